@@ -1,0 +1,40 @@
+"""Canonical form: what makes two exports of the same supervisors compile to the same bytes.
+
+Events are sorted by name and identified by their index in that order. Each supervisor's
+states are renumbered breadth-first from its initial state (which becomes 0), following
+transitions in event order; states not reached are dropped, with a warning. Supervisors keep
+the order of the input."""
+
+from collections import deque
+
+from .model import CanonicalSupervisor, Model
+
+
+def canonicalise(spec):
+    """:class:`~swarmvm.model.Supervisors` -> :class:`~swarmvm.model.Model`."""
+    events = tuple(sorted(spec.events))
+    index = {name: i for i, name in enumerate(events)}
+    supervisors, warnings = [], list(spec.warnings)
+    for s, local in enumerate(spec.supervisors):
+        rows = [sorted((index[t.event], t.target, t.probability) for t in row) for row in local.states]
+        number = {local.initial: 0}
+        order = [local.initial]
+        queue = deque(order)
+        while queue:
+            for _, target, _ in rows[queue.popleft()]:
+                if target not in number:
+                    number[target] = len(order)
+                    order.append(target)
+                    queue.append(target)
+        dropped = len(rows) - len(order)
+        if dropped:
+            missing = sorted(set(range(len(rows))) - set(number))
+            warnings.append("%s: supervisor %d: %d unreachable state(s) dropped (states %s)"
+                            % (spec.source, s, dropped, ", ".join(map(str, missing))))
+        states = tuple(tuple((e, number[target], p) for e, target, p in rows[old]) for old in order)
+        supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states))
+    return Model(
+        source=spec.source, events=events,
+        controllable=tuple(spec.controllable[n] for n in events),
+        public=tuple(spec.public[n] for n in events),
+        supervisors=tuple(supervisors), probabilistic=spec.probabilistic, warnings=tuple(warnings))

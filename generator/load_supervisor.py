@@ -1,0 +1,252 @@
+"""Load and validate a compiled supervisor in Nadzoru 2's ``supervisor.yaml`` layout.
+
+The file is parsed with PyYAML's BaseLoader, which leaves every scalar a string: YAML 1.1
+would otherwise turn an event called ``on`` into True and ``010`` into 8. Each value is then
+typed by the key and position it appears at, and every defect is reported as one
+:class:`~swarmvm.errors.InputError` naming file, key and supervisor / state / event.
+"""
+
+import os
+import re
+from fractions import Fraction
+
+import yaml
+
+from .errors import InputError
+from .model import LocalSupervisor, Supervisors, Transition
+
+MAX_BYTES = 1 << 20
+REQUIRED = ("num_events", "num_supervisors", "events", "ev_controllable", "sup_events",
+            "sup_init_state", "sup_data_pos", "sup_data")
+OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", "sup_data_prob")
+NAME = re.compile(r"[A-Za-z0-9_]*\Z")
+INTEGER = re.compile(r"[0-9]+\Z")
+
+
+def bare_name(raw):
+    """The event name without Nadzoru's ``EV_`` prefix."""
+    return raw[3:] if raw.startswith("EV_") else raw
+
+
+class _Reader:
+    """Typed access to the parsed document, raising InputError at the first defect."""
+
+    def __init__(self, path, doc):
+        self.path, self.doc = path, doc
+
+    def fail(self, key, message, where=""):
+        raise InputError(self.path, key, message, where)
+
+    def int(self, value, key, where="", low=0, high=None):
+        if not isinstance(value, str) or not INTEGER.match(value):
+            self.fail(key, "expected a non-negative integer, got %s" % _show(value), where)
+        number = int(value)
+        if number < low or (high is not None and number > high):
+            bound = "at least %d" % low if high is None else "in %d..%d" % (low, high)
+            self.fail(key, "value %d out of range (must be %s)" % (number, bound), where)
+        return number
+
+    def list(self, key, length=None, what=""):
+        value = self.doc[key]
+        if not isinstance(value, list):
+            self.fail(key, "expected a list, got %s" % _show(value))
+        if length is not None and len(value) != length:
+            self.fail(key, "has %d entries, %s says %d" % (len(value), what, length))
+        return value
+
+    def flags(self, key, length, names):
+        values = self.list(key, length, "num_events")
+        out = []
+        for i, value in enumerate(values):
+            if value not in ("0", "1"):
+                self.fail("%s[%d]" % (key, i), "value %s is not 0 or 1" % _show(value), "event %s" % names[i])
+            out.append(value == "1")
+        return out
+
+
+def _show(value):
+    if isinstance(value, str):
+        return repr(value) if value == "" else value
+    return "a list" if isinstance(value, list) else "a mapping" if isinstance(value, dict) else repr(value)
+
+
+def load_supervisor(path):
+    """Read ``path`` and return :class:`Supervisors`, or raise InputError."""
+    name = path
+    try:
+        size = os.path.getsize(path)
+    except OSError as exc:
+        raise InputError(name, "", "cannot read file (%s)" % exc.strerror)
+    if size > MAX_BYTES:
+        raise InputError(name, "", "file is %d bytes, over the %d-byte limit" % (size, MAX_BYTES))
+    with open(path, "rb") as handle:
+        raw = handle.read()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(name, "", "not UTF-8 text (byte %d)" % exc.start)
+    try:
+        doc = yaml.load(text, Loader=yaml.BaseLoader)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        line = " at line %d" % (mark.line + 1) if mark is not None else ""
+        raise InputError(name, "", "not valid YAML%s: %s" % (line, getattr(exc, "problem", None) or exc))
+    if not isinstance(doc, dict):
+        raise InputError(name, "", "expected a mapping of keys at the top level, got %s" % _show(doc))
+    spec = _parse(_Reader(name, doc))
+    spec.size_bytes = size
+    return spec
+
+
+def _parse(r):
+    doc = r.doc
+    for key in REQUIRED:
+        if key not in doc:
+            r.fail(key, "missing key")
+    # Unknown keys are tolerated (newer Nadzoru exports may add some) but reported.
+    warnings = ["%s: %s: unknown key ignored" % (r.path, key) for key in doc if key not in REQUIRED + OPTIONAL]
+    n_events = r.int(doc["num_events"], "num_events", low=1, high=255)
+    n_sups = r.int(doc["num_supervisors"], "num_supervisors", low=1, high=255)
+
+    events, seen = [], {}
+    for i, raw in enumerate(r.list("events", n_events, "num_events")):
+        if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
+            r.fail("events[%d]" % i, "%s is not an event name (letters, digits and '_')" % _show(raw))
+        bare = bare_name(raw)
+        if bare in seen:
+            r.fail("events[%d]" % i, "duplicate event name (also events[%d])" % seen[bare], "event EV_%s" % bare)
+        seen[bare] = i
+        events.append(bare)
+
+    controllable = r.flags("ev_controllable", n_events, events)
+    public = [False] * n_events
+    for key in ("ev_shared", "ev_public"):
+        if key in doc:
+            flags = r.flags(key, n_events, events)
+            if "ev_shared" in doc and key == "ev_public" and flags != public:
+                i = next(i for i in range(n_events) if flags[i] != public[i])
+                r.fail("ev_public[%d]" % i, "disagrees with ev_shared[%d]" % i, "event EV_%s" % events[i])
+            public = flags
+
+    alphabets = []
+    rows = r.list("sup_events", n_sups, "num_supervisors")
+    for s, row in enumerate(rows):
+        if not isinstance(row, list) or len(row) != n_events:
+            r.fail("sup_events[%d]" % s, "expected a list of %d flags (num_events)" % n_events, "supervisor %d" % s)
+        for e, value in enumerate(row):
+            if value not in ("0", "1"):
+                r.fail("sup_events[%d][%d]" % (s, e), "value %s is not 0 or 1" % _show(value),
+                       "supervisor %d, event EV_%s" % (s, events[e]))
+        alphabets.append(frozenset(events[e] for e in range(n_events) if row[e] == "1"))
+
+    positions = [r.int(v, "sup_data_pos[%d]" % s, "supervisor %d" % s)
+                 for s, v in enumerate(r.list("sup_data_pos", n_sups, "num_supervisors"))]
+    data = r.list("sup_data")
+    index = {name: i for i, name in enumerate(events)}
+    supervisors = []
+    for s in range(n_sups):
+        end = positions[s + 1] if s + 1 < n_sups else len(data)
+        states = _parse_block(r, data, positions[s], end, s, index, alphabets[s])
+        supervisors.append(states)
+
+    inits = r.list("sup_init_state", n_sups, "num_supervisors")
+    initial = [r.int(v, "sup_init_state[%d]" % s, "supervisor %d" % s, high=len(supervisors[s]) - 1)
+               for s, v in enumerate(inits)]
+    if "sup_current_state" in doc:
+        for s, v in enumerate(r.list("sup_current_state", n_sups, "num_supervisors")):
+            r.int(v, "sup_current_state[%d]" % s, "supervisor %d" % s, high=len(supervisors[s]) - 1)
+
+    probabilistic = "sup_data_prob" in doc or "sup_data_prob_pos" in doc
+    if probabilistic:
+        for key in ("sup_data_prob", "sup_data_prob_pos"):
+            if key not in doc:
+                r.fail(key, "missing key (the probabilistic keys come in a pair)")
+        _parse_probabilities(r, supervisors, controllable, index, n_sups)
+
+    return Supervisors(
+        source=os.path.basename(r.path), events=events,
+        controllable=dict(zip(events, controllable)), public=dict(zip(events, public)),
+        supervisors=[LocalSupervisor(alphabets[s], initial[s], supervisors[s]) for s in range(n_sups)],
+        probabilistic=probabilistic, warnings=warnings)
+
+
+def _parse_block(r, data, start, end, s, index, alphabet):
+    """One supervisor's states from ``sup_data[start:end]``: n, then n (event, hi, lo)."""
+    if not 0 <= start <= end <= len(data):
+        r.fail("sup_data_pos[%d]" % s, "position %d does not start a block inside sup_data (%d entries)"
+               % (start, len(data)), "supervisor %d" % s)
+    states, pos = [], start
+    while pos < end:
+        q = len(states)
+        where = "supervisor %d, state %d" % (s, q)
+        count = r.int(data[pos], "sup_data[%d]" % pos, where)
+        if pos + 1 + 3 * count > end:
+            r.fail("sup_data_pos[%d]" % (s + 1) if end != len(data) else "sup_data",
+                   "the block of supervisor %d does not end where %s" % (
+                       s, "the next supervisor starts (sup_data[%d])" % end if end != len(data) else "sup_data ends"),
+                   where)
+        transitions, seen = [], set()
+        for k in range(count):
+            p = pos + 1 + 3 * k
+            raw = data[p]
+            if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
+                r.fail("sup_data[%d]" % p, "%s is not an event name" % _show(raw), where)
+            name = bare_name(raw)
+            at = "%s, event EV_%s" % (where, name)
+            if name not in index:
+                r.fail("sup_data[%d]" % p, "event is not in events", at)
+            if name not in alphabet:
+                r.fail("sup_data[%d]" % p, "event is not in the supervisor's alphabet (sup_events)", at)
+            if name in seen:
+                r.fail("sup_data[%d]" % p, "nondeterministic: a second transition on this event from this state", at)
+            seen.add(name)
+            hi = r.int(data[p + 1], "sup_data[%d]" % (p + 1), at, high=255)
+            lo = r.int(data[p + 2], "sup_data[%d]" % (p + 2), at, high=255)
+            transitions.append(Transition(name, hi * 256 + lo))
+        states.append(transitions)
+        pos += 1 + 3 * count
+    if not states:
+        r.fail("sup_data_pos[%d]" % s, "supervisor has no states", "supervisor %d" % s)
+    for q, transitions in enumerate(states):
+        for t in transitions:
+            if t.target >= len(states):
+                r.fail("sup_data", "target %d out of range (the supervisor has %d states)" % (t.target, len(states)),
+                       "supervisor %d, state %d, event EV_%s" % (s, q, t.event))
+    return states
+
+
+def _parse_probabilities(r, supervisors, controllable, index, n_sups):
+    """Nadzoru 2's probabilistic keys: per state ``k, p_1..p_k`` for its k controllable
+    out-transitions in sup_data order. Probabilities are read exactly (as fractions)."""
+    positions = [r.int(v, "sup_data_prob_pos[%d]" % s, "supervisor %d" % s)
+                 for s, v in enumerate(r.list("sup_data_prob_pos", n_sups, "num_supervisors"))]
+    data = r.list("sup_data_prob")
+    for s, states in enumerate(supervisors):
+        pos = positions[s]
+        end = positions[s + 1] if s + 1 < n_sups else len(data)
+        for q, transitions in enumerate(states):
+            where = "supervisor %d, state %d" % (s, q)
+            if pos >= end:
+                r.fail("sup_data_prob", "block ends before the supervisor's last state", where)
+            wanted = [t for t in transitions if controllable[index[t.event]]]
+            count = r.int(data[pos], "sup_data_prob[%d]" % pos, where)
+            if count != len(wanted):
+                r.fail("sup_data_prob[%d]" % pos, "%d probabilities, the state has %d controllable transitions"
+                       % (count, len(wanted)), where)
+            for k, t in enumerate(wanted):
+                p = pos + 1 + k
+                at = "%s, event EV_%s" % (where, t.event)
+                if p >= end:
+                    r.fail("sup_data_prob", "block ends inside a state's probabilities", at)
+                try:
+                    value = Fraction(data[p]) if isinstance(data[p], str) else None
+                except ValueError:
+                    value = None
+                if value is None or not 0 <= value <= 1:
+                    r.fail("sup_data_prob[%d]" % p, "%s is not a probability in [0, 1]" % _show(data[p]), at)
+                t.probability = value
+            pos += 1 + count
+        if pos != end:
+            r.fail("sup_data_prob_pos[%d]" % (s + 1) if s + 1 < n_sups else "sup_data_prob",
+                   "the probability block of supervisor %d does not end where the next starts" % s,
+                   "supervisor %d" % s)

@@ -1,0 +1,59 @@
+"""The data a loader produces (as read) and the canonical model the compiler works on."""
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Optional
+
+
+@dataclass
+class Transition:
+    event: str                   # bare event name (no ``EV_`` prefix)
+    target: int
+    probability: Optional[Fraction] = None
+
+
+@dataclass
+class LocalSupervisor:
+    """One local supervisor as read: states in file order, transitions in file order."""
+    alphabet: frozenset
+    initial: int
+    states: list                 # list[list[Transition]]
+
+
+@dataclass
+class Supervisors:
+    """A whole input (one supervisor.yaml, or a set of automata), before canonicalisation."""
+    source: str                  # file name(s) as given on the command line, basenames only
+    events: list                 # bare names in input order
+    controllable: dict           # name -> bool
+    public: dict                 # name -> bool
+    supervisors: list            # list[LocalSupervisor]
+    size_bytes: int = 0
+    probabilistic: bool = False
+    warnings: list = field(default_factory=list)
+
+    def counts(self):
+        """Events, supervisors, states, transitions as read (the seed's KPI table counts)."""
+        states = sum(len(s.states) for s in self.supervisors)
+        transitions = sum(len(t) for s in self.supervisors for t in s.states)
+        return len(self.events), len(self.supervisors), states, transitions
+
+
+@dataclass(frozen=True)
+class CanonicalSupervisor:
+    """States renumbered breadth-first from the initial state (which is 0); per state the
+    transitions as (event index, target, probability or None), sorted by event index."""
+    alphabet: frozenset          # event indices
+    states: tuple
+
+
+@dataclass(frozen=True)
+class Model:
+    """Canonical supervisors: events sorted by name, identified by index into ``events``."""
+    source: str
+    events: tuple
+    controllable: tuple
+    public: tuple
+    supervisors: tuple
+    probabilistic: bool
+    warnings: tuple = field(default=(), compare=False)

@@ -1,0 +1,45 @@
+"""Event scripts: the target-independent input of the conformance contract (docs/conformance.md).
+
+A script says, for each step, which uncontrollable events' checks return true. As text: one
+line per step listing ``EV_`` names separated by spaces, or ``-`` for none; ``#`` starts a
+comment line."""
+
+import random
+
+from .errors import InputError
+
+
+def parse_script(path, text, names, controllable):
+    """Text -> list of sets of event indices. ``names`` are the image's bare event names."""
+    index = {"EV_" + n: i for i, n in enumerate(names)}
+    rows = []
+    for number, line in enumerate(text.splitlines(), 1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        row = set()
+        if line != "-":
+            for token in line.split():
+                if token not in index:
+                    raise InputError(path, "line %d" % number, "unknown event", "event %s" % token)
+                if controllable >> index[token] & 1:
+                    raise InputError(path, "line %d" % number, "controllable events are chosen by the VM, "
+                                     "not scripted", "event %s" % token)
+                row.add(index[token])
+        rows.append(row)
+    return rows
+
+
+def format_script(rows, names):
+    """Rows of event indices -> script text (events in index order)."""
+    lines = ["# swarmvm event script: one step per line, the uncontrollable events that occur"]
+    for row in rows:
+        lines.append(" ".join("EV_" + names[e] for e in sorted(row)) or "-")
+    return "\n".join(lines) + "\n"
+
+
+def random_script(tables, steps, seed, density=0.25):
+    """A reproducible random script over the model's uncontrollable events."""
+    rng = random.Random(seed)
+    uncontrollable = [e for e in range(tables.num_events) if not tables.controllable >> e & 1]
+    return [{e for e in uncontrollable if rng.random() < density} for _ in range(steps)]

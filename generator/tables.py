@@ -1,0 +1,78 @@
+"""The VM tables every target shares, built once from the canonical model.
+
+Per supervisor: its alphabet as an event mask, the global index of its first state, its state
+count and initial state. Per state: the mask of events it has a transition on (``defined``)
+and the index of its first successor in ``targets``. The successor on event e is
+``targets[first + rank]`` where rank counts the defined events below e: a step needs no
+search, only mask operations, whatever the size of the automata."""
+
+from dataclasses import dataclass
+from fractions import Fraction
+from math import floor
+from typing import Optional
+
+Q15_ONE = 32768
+
+
+@dataclass(frozen=True)
+class Tables:
+    num_events: int
+    num_supervisors: int
+    mask_bytes: int
+    state_width: int
+    controllable: int
+    public: int
+    sup_alphabet: tuple
+    sup_first_state: tuple
+    sup_num_states: tuple
+    sup_initial: tuple
+    state_defined: tuple
+    state_first: tuple
+    targets: tuple
+    probs: Optional[tuple]
+    names: tuple
+
+    @property
+    def num_states(self):
+        return len(self.state_defined)
+
+    @property
+    def num_transitions(self):
+        return len(self.targets)
+
+
+def q15(probability):
+    """A probability as an unsigned Q15 fixed-point number (1.0 = 32768), rounded half up."""
+    return min(Q15_ONE, floor(Fraction(probability) * Q15_ONE + Fraction(1, 2)))
+
+
+def _mask(indices):
+    value = 0
+    for i in indices:
+        value |= 1 << i
+    return value
+
+
+def build_tables(model):
+    """:class:`~swarmvm.model.Model` -> :class:`Tables`."""
+    sup_first, sup_count, defined, first, targets, probs = [], [], [], [], [], []
+    for sup in model.supervisors:
+        sup_first.append(len(defined))
+        sup_count.append(len(sup.states))
+        for row in sup.states:
+            defined.append(_mask(e for e, _, _ in row))
+            first.append(len(targets))
+            for e, target, p in row:
+                targets.append(target)
+                probs.append(Q15_ONE if p is None or not model.controllable[e] else q15(p))
+    widest = max(sup_count)
+    return Tables(
+        num_events=len(model.events), num_supervisors=len(model.supervisors),
+        mask_bytes=(len(model.events) + 7) // 8, state_width=1 if widest <= 256 else 2,
+        controllable=_mask(i for i, c in enumerate(model.controllable) if c),
+        public=_mask(i for i, p in enumerate(model.public) if p),
+        sup_alphabet=tuple(_mask(s.alphabet) for s in model.supervisors),
+        sup_first_state=tuple(sup_first), sup_num_states=tuple(sup_count),
+        sup_initial=tuple(0 for _ in model.supervisors),
+        state_defined=tuple(defined), state_first=tuple(first), targets=tuple(targets),
+        probs=tuple(probs) if model.probabilistic else None, names=model.events)

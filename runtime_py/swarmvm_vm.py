@@ -1,0 +1,424 @@
+"""swarmvm Python VM: evolves compiled supervisors from a swarmvm table image.
+
+One file, standard library only, so it can be copied onto a robot as it is. It implements the
+execution semantics of docs/semantics.md exactly; the other runtimes (C, C++) are checked
+against this one trace for trace. The tables come from a table image (docs/image-format.md),
+either compiled into a generated module as a bytes literal or read from a ``.svm`` file: both
+go through :meth:`Image.parse`, so "compiled in" and "loaded" are one code path.
+"""
+
+__all__ = ["Image", "ImageError", "VM", "XorShift32", "crc16", "SCT", "SCTPub", "format_trace_line", "replay"]
+
+MAGIC = b"SVMI"
+FORMAT_VERSION = 1
+HEADER_SIZE = 16
+FLAG_NAMES = 1
+FLAG_PROBS = 2
+Q15_ONE = 32768
+
+INPUT_MODES = ("level", "edge")
+CONTROL_MODES = ("after-inputs", "if-quiet")
+POLICIES = ("uniform", "first", "weighted", "learned")
+
+
+def crc16(data, crc=0xFFFF):
+    """CRC-16 with the reflected CCITT polynomial 0x8408, no final xor (CRC-16/MCRF4XX).
+
+    It is what avr-libc's ``_crc_ccitt_update`` computes, so the Kilobot checks an image
+    with the library routine it already has."""
+    for byte in data:
+        crc ^= byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0x8408 if crc & 1 else crc >> 1
+    return crc
+
+
+class ImageError(ValueError):
+    """A table image that cannot be run: wrong magic or version, bad checksum, truncated."""
+
+
+class XorShift32:
+    """The one pseudo-random generator of every runtime (Marsaglia's xorshift32, 13/17/5).
+
+    Cheap on an 8-bit AVR and specified bit for bit, so a seed gives the same choices on every
+    target. Seed 0 (a fixed point of xorshift) is replaced by 0x9E3779B9."""
+
+    def __init__(self, seed=1):
+        self.state = (seed & 0xFFFFFFFF) or 0x9E3779B9
+
+    def next(self):
+        x = self.state
+        x ^= (x << 13) & 0xFFFFFFFF
+        x ^= x >> 17
+        x ^= (x << 5) & 0xFFFFFFFF
+        self.state = x
+        return x
+
+    def below(self, n):
+        """An index in [0, n) for n < 65536: the top 16 bits scaled by n, no division."""
+        return ((self.next() >> 16) * n) >> 16
+
+
+class Image:
+    """A parsed table image: the canonical tables every runtime interprets.
+
+    Events are numbered 0..E-1 in canonical (name) order; masks are Python ints with bit e for
+    event e; ``targets[state_first[g] + rank]`` is the successor of global state g on the
+    event whose bit is the rank-th set bit of ``state_defined[g]``."""
+
+    def __init__(self, raw, num_events, num_supervisors, controllable, public, sup_alphabet,
+                 sup_first_state, sup_num_states, sup_initial, state_defined, state_first,
+                 targets, probs, names):
+        self.raw = raw
+        self.num_events = num_events
+        self.num_supervisors = num_supervisors
+        self.controllable = controllable
+        self.public = public
+        self.sup_alphabet = sup_alphabet
+        self.sup_first_state = sup_first_state
+        self.sup_num_states = sup_num_states
+        self.sup_initial = sup_initial
+        self.state_defined = state_defined
+        self.state_first = state_first
+        self.targets = targets
+        self.probs = probs
+        self.names = names
+
+    @classmethod
+    def load(cls, path):
+        """Read a ``.svm`` file."""
+        with open(path, "rb") as handle:
+            return cls.parse(handle.read())
+
+    @classmethod
+    def parse(cls, raw):
+        """Check and decode an image; raises :class:`ImageError` naming the first defect."""
+        raw = bytes(raw)
+        if len(raw) < HEADER_SIZE + 2:
+            raise ImageError("image truncated: %d bytes, the header alone needs %d" % (len(raw), HEADER_SIZE + 2))
+        if raw[0:4] != MAGIC:
+            raise ImageError("not a swarmvm table image (magic %r, expected %r)" % (raw[0:4], MAGIC))
+        if raw[4] != FORMAT_VERSION:
+            raise ImageError("image format version %d, this VM reads version %d" % (raw[4], FORMAT_VERSION))
+        flags, n_events, n_sups = raw[5], raw[6], raw[7]
+        n_states, n_trans = _u16(raw, 8), _u16(raw, 10)
+        width, mask_bytes, length = raw[12], raw[13], _u16(raw, 14)
+        if length != len(raw):
+            raise ImageError("image length field says %d bytes, got %d" % (length, len(raw)))
+        stored = _u16(raw, length - 2)
+        if crc16(raw[:length - 2]) != stored:
+            raise ImageError("image checksum mismatch (stored 0x%04x, computed 0x%04x)" % (stored, crc16(raw[:length - 2])))
+        if width not in (1, 2) or mask_bytes != (n_events + 7) // 8 or n_events == 0 or n_sups == 0:
+            raise ImageError("image header inconsistent (events %d, mask bytes %d, state width %d)" % (n_events, mask_bytes, width))
+        pos = HEADER_SIZE
+
+        def mask():
+            nonlocal pos
+            value = int.from_bytes(raw[pos:pos + mask_bytes], "little")
+            pos += mask_bytes
+            return value
+
+        def u16():
+            nonlocal pos
+            value = _u16(raw, pos)
+            pos += 2
+            return value
+
+        controllable, public = mask(), mask()
+        sup_alphabet, sup_first, sup_count, sup_init = [], [], [], []
+        for _ in range(n_sups):
+            sup_alphabet.append(mask())
+            sup_first.append(u16())
+            sup_count.append(u16())
+            sup_init.append(u16())
+        state_defined, state_first = [], []
+        for _ in range(n_states):
+            state_defined.append(mask())
+            state_first.append(u16())
+        targets = [int.from_bytes(raw[pos + i * width:pos + (i + 1) * width], "little") for i in range(n_trans)]
+        pos += n_trans * width
+        probs = None
+        if flags & FLAG_PROBS:
+            probs = [_u16(raw, pos + 2 * i) for i in range(n_trans)]
+            pos += 2 * n_trans
+        names = None
+        if flags & FLAG_NAMES:
+            names = []
+            for _ in range(n_events):
+                size = raw[pos]
+                names.append(raw[pos + 1:pos + 1 + size].decode("ascii"))
+                pos += 1 + size
+        if pos != length - 2:
+            raise ImageError("image sections end at byte %d, the checksum is at byte %d" % (pos, length - 2))
+        return cls(raw, n_events, n_sups, controllable, public, sup_alphabet, sup_first, sup_count,
+                   sup_init, state_defined, state_first, targets, probs, names)
+
+    def event_name(self, event):
+        """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
+        return "EV_" + (self.names[event] if self.names is not None else str(event))
+
+    def event_index(self, name):
+        """Index of an event given as ``EV_x`` or ``x``; KeyError for an unknown name."""
+        if self.names is None:
+            raise KeyError("this image carries no event names: bind events by index")
+        bare = name[3:] if name.startswith("EV_") else name
+        if bare not in self.names:
+            raise KeyError("no event named %r in this supervisor" % name)
+        return self.names.index(bare)
+
+
+def _u16(raw, pos):
+    return raw[pos] | (raw[pos + 1] << 8)
+
+
+def _bits(mask):
+    """Indices of the set bits of ``mask``, lowest first (canonical event order)."""
+    out = []
+    index = 0
+    while mask:
+        if mask & 1:
+            out.append(index)
+        mask >>= 1
+        index += 1
+    return out
+
+
+class VM:
+    """The virtual machine: current states, inputs, generator, callbacks; ``step()`` evolves it.
+
+    Options (docs/semantics.md): ``inputs`` level|edge, ``control`` after-inputs|if-quiet,
+    ``policy`` uniform|first|weighted|learned (learned takes ``learner``, an object with
+    ``choose(vm, enabled)`` returning one of ``enabled``), ``seed`` for the generator,
+    ``priority`` (event names, highest first) for ``first``."""
+
+    def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
+                 priority=None, learner=None, on_violation=None):
+        if inputs not in INPUT_MODES:
+            raise ValueError("inputs must be one of %s" % (INPUT_MODES,))
+        if control not in CONTROL_MODES:
+            raise ValueError("control must be one of %s" % (CONTROL_MODES,))
+        if policy not in POLICIES:
+            raise ValueError("policy must be one of %s" % (POLICIES,))
+        if policy == "learned" and learner is None:
+            raise ValueError("policy 'learned' needs a learner")
+        self.inputs, self.control, self.policy = inputs, control, policy
+        self.seed, self.learner, self.on_violation = seed, learner, on_violation
+        self._priority = priority
+        self.actions, self.checks, self.data = {}, {}, {}
+        self._install(image if isinstance(image, Image) else Image.parse(image))
+        self.reset()
+
+    # -- tables -------------------------------------------------------------------------------
+    def _install(self, image):
+        """Derive the per-state lookup structures the step uses from an image."""
+        self.image = image
+        self.num_events = image.num_events
+        uncontrollable = ((1 << image.num_events) - 1) & ~image.controllable
+        # Check order: public uncontrollable events first, then private ones, each by name.
+        self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
+        self.not_alphabet = [((1 << image.num_events) - 1) & ~a for a in image.sup_alphabet]
+        self.allowed, self.moves, self.weights = [], [], []
+        for sup in range(image.num_supervisors):
+            first = image.sup_first_state[sup]
+            allowed, moves, weights = [], [], []
+            for local in range(image.sup_num_states[sup]):
+                g = first + local
+                events = _bits(image.state_defined[g])
+                base = image.state_first[g]
+                allowed.append(image.state_defined[g] | self.not_alphabet[sup])
+                moves.append({e: image.targets[base + r] for r, e in enumerate(events)})
+                if image.probs is not None:
+                    weights.append({e: image.probs[base + r] for r, e in enumerate(events)})
+            self.allowed.append(allowed)
+            self.moves.append(moves)
+            self.weights.append(weights)
+        self.event_sups = [[s for s in range(image.num_supervisors) if image.sup_alphabet[s] >> e & 1]
+                           for e in range(image.num_events)]
+        # Rank of each event for policy "first": listed events first, the rest by name.
+        listed = [self._index(name) for name in self._priority or ()]
+        self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+
+    def load(self, image):
+        """Swap in a new table image between two steps; states restart from its initial states.
+
+        Callbacks bound by name are rebound by name; a name the new image lacks raises
+        ``KeyError`` before anything changes, so the VM keeps running the logic it had."""
+        new = image if isinstance(image, Image) else Image.parse(image)
+        old_names = {e: self.image.event_name(e) for e in set(self.actions) | set(self.checks)}
+        if old_names and new.names is None and self.image.names is not None:
+            raise KeyError("the new image carries no event names to rebind callbacks by")
+        mapping = {e: new.event_index(name) for e, name in old_names.items()} if self.image.names else {}
+        self.actions = {mapping.get(e, e): f for e, f in self.actions.items()}
+        self.checks = {mapping.get(e, e): f for e, f in self.checks.items()}
+        self.data = {mapping.get(e, e): d for e, d in self.data.items()}
+        self._install(new)
+        self.reset()
+
+    # -- callbacks ----------------------------------------------------------------------------
+    def _index(self, event):
+        if isinstance(event, int):
+            if not 0 <= event < self.num_events:
+                raise KeyError("event index %d out of range (0..%d)" % (event, self.num_events - 1))
+            return event
+        return self.image.event_index(event)
+
+    def bind(self, event, action=None, check=None, data=None):
+        """Bind an action and/or a check to an event given by name (``EV_x`` or ``x``) or index.
+
+        A name the supervisor does not have is an error (KeyError), never event 0."""
+        index = self._index(event)
+        if check is not None and self.image.controllable >> index & 1:
+            raise ValueError("%s is controllable: it takes an action, not a check" % self.image.event_name(index))
+        if action is not None:
+            self.actions[index] = action
+        if check is not None:
+            self.checks[index] = check
+        self.data[index] = data
+
+    def bind_controller(self, controller):
+        """Bind ``on_<event>`` and ``check_<event>`` methods of an object, by event name."""
+        for e in range(self.num_events):
+            bare = self.image.event_name(e)[3:]
+            action = getattr(controller, "on_" + bare, None)
+            check = getattr(controller, "check_" + bare, None)
+            if not self.image.controllable >> e & 1 or check is None:
+                self.bind(e, action=action, check=check)
+            else:
+                self.bind(e, action=action)
+
+    def unbound_checks(self):
+        """Names of uncontrollable events with no check (they can never occur)."""
+        return [self.image.event_name(e) for e in self.input_order if e not in self.checks]
+
+    # -- running ------------------------------------------------------------------------------
+    def reset(self):
+        """Back to the initial states, cleared inputs and counters, generator re-seeded."""
+        self.states = list(self.image.sup_initial)
+        self.previous = 0
+        self.violations = 0
+        self.rng = XorShift32(self.seed)
+
+    def enabled(self):
+        """Controllable events enabled by every supervisor, in canonical order."""
+        mask = self.image.controllable
+        for sup, state in enumerate(self.states):
+            mask &= self.allowed[sup][state]
+        return _bits(mask)
+
+    def _apply(self, event):
+        for sup in self.event_sups[event]:
+            target = self.moves[sup][self.states[sup]].get(event)
+            if target is None:
+                self.violations += 1
+                if self.on_violation is not None:
+                    self.on_violation(event, sup)
+            else:
+                self.states[sup] = target
+        action = self.actions.get(event)
+        if action is not None:
+            action(self.data.get(event))
+
+    def _weight(self, event):
+        weight = Q15_ONE
+        if self.image.probs is not None:
+            for sup in self.event_sups[event]:
+                weight = (weight * self.weights[sup][self.states[sup]][event]) >> 15
+        return weight
+
+    def select(self, enabled):
+        """One of the enabled controllable events, by the VM's policy (enabled is non-empty)."""
+        if self.policy == "first":
+            return min(enabled, key=self.rank.__getitem__)
+        if self.policy == "learned":
+            return self.learner.choose(self, enabled)
+        if len(enabled) == 1:
+            return enabled[0]
+        if self.policy == "uniform":
+            return enabled[self.rng.below(len(enabled))]
+        weights = [self._weight(e) for e in enabled]
+        total = sum(weights)
+        if total == 0:
+            return enabled[self.rng.below(len(enabled))]
+        pick = self.rng.next() % total
+        for event, weight in zip(enabled, weights):
+            if pick < weight:
+                return event
+            pick -= weight
+        raise AssertionError("unreachable: pick below total")
+
+    def step(self):
+        """One VM step; returns the events that fired, in order (indices)."""
+        current = 0
+        for event in self.input_order:
+            check = self.checks.get(event)
+            if check is not None and check(self.data.get(event)):
+                current |= 1 << event
+        occurred = current & ~self.previous if self.inputs == "edge" else current
+        self.previous = current
+        fired = [event for event in self.input_order if occurred >> event & 1]
+        for event in fired:
+            self._apply(event)
+        if fired and self.control == "if-quiet":
+            return fired
+        enabled = self.enabled()
+        if enabled:
+            choice = self.select(enabled)
+            self._apply(choice)
+            fired.append(choice)
+        return fired
+
+
+def format_trace_line(step, names, states, violations):
+    """One line of the canonical trace (docs/conformance.md): step, events, states, violations."""
+    return "%d %s %s %d" % (step, ",".join(names) or "-", ",".join(str(s) for s in states), violations)
+
+
+def replay(vm, rows):
+    """Run ``vm`` from reset on an event script (a list of sets of event indices, one per step)
+    and return the canonical trace lines. This is the reference conformance harness: the C and
+    C++ harnesses do exactly this and must print the same lines."""
+    script = {"row": set()}
+    for event in vm.input_order:
+        vm.bind(event, check=lambda _data, event=event: event in script["row"])
+    vm.reset()
+    lines = []
+    for number, row in enumerate(rows, 1):
+        script["row"] = row
+        fired = vm.step()
+        lines.append(format_trace_line(number, [vm.image.event_name(e) for e in fired], vm.states, vm.violations))
+    return lines
+
+
+class SCT:
+    """Nadzoru 2's Python VM API over :class:`VM`, so published controllers run unchanged.
+
+    ``SCT(path)`` reads a table image: a ``.svm`` file, or for a ``supervisor.yaml`` path the
+    ``supervisor.svm`` that ``swarmvm pack`` writes beside it (no YAML parser on the robot).
+    ``EV`` maps ``EV_x`` names to indices; ``add_callback(EV['EV_x'], callback, check, data)``
+    and ``run_step()`` behave as Nadzoru's; events are processed public-first, as SCTPub does."""
+
+    def __init__(self, filename, **options):
+        path = filename[:-5] + ".svm" if filename.endswith(".yaml") else filename
+        self.vm = VM(Image.load(path), **options)
+        image = self.vm.image
+        self.EV = {image.event_name(e): e for e in range(image.num_events)}
+        self.ev_controllable = [image.controllable >> e & 1 for e in range(image.num_events)]
+        self.num_events = image.num_events
+        self.num_supervisors = image.num_supervisors
+
+    @property
+    def sup_current_state(self):
+        return self.vm.states
+
+    def add_callback(self, event, clbk, ci, sup_data):
+        controllable = self.ev_controllable[self.vm._index(event)]
+        self.vm.bind(event, action=clbk, check=None if controllable else ci, data=sup_data)
+
+    def run_step(self):
+        self.vm.step()
+
+    def get_events(self):
+        return self.EV, self.ev_controllable
+
+
+SCTPub = SCT
