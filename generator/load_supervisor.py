@@ -59,7 +59,7 @@ class _Reader:
         out = []
         for i, value in enumerate(values):
             if value not in ("0", "1"):
-                self.fail("%s[%d]" % (key, i), "value %s is not 0 or 1" % _show(value), "event %s" % names[i])
+                self.fail("%s[%d]" % (key, i), "value %s is not 0 or 1" % _show(value), "event EV_%s" % names[i])
             out.append(value == "1")
         return out
 
@@ -175,7 +175,7 @@ def _parse_block(r, data, start, end, s, index, alphabet):
     if not 0 <= start <= end <= len(data):
         r.fail("sup_data_pos[%d]" % s, "position %d does not start a block inside sup_data (%d entries)"
                % (start, len(data)), "supervisor %d" % s)
-    states, pos = [], start
+    states, pos, targets = [], start, []
     while pos < end:
         q = len(states)
         where = "supervisor %d, state %d" % (s, q)
@@ -203,15 +203,14 @@ def _parse_block(r, data, start, end, s, index, alphabet):
             hi = r.int(data[p + 1], "sup_data[%d]" % (p + 1), at, high=255)
             lo = r.int(data[p + 2], "sup_data[%d]" % (p + 2), at, high=255)
             transitions.append(Transition(name, hi * 256 + lo))
+            targets.append((p + 1, at, hi * 256 + lo))
         states.append(transitions)
         pos += 1 + 3 * count
     if not states:
         r.fail("sup_data_pos[%d]" % s, "supervisor has no states", "supervisor %d" % s)
-    for q, transitions in enumerate(states):
-        for t in transitions:
-            if t.target >= len(states):
-                r.fail("sup_data", "target %d out of range (the supervisor has %d states)" % (t.target, len(states)),
-                       "supervisor %d, state %d, event EV_%s" % (s, q, t.event))
+    for p, at, target in targets:
+        if target >= len(states):
+            r.fail("sup_data[%d]" % p, "target %d out of range (the supervisor has %d states)" % (target, len(states)), at)
     return states
 
 
