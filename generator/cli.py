@@ -1,4 +1,4 @@
-"""The ``swarmvm`` command line: check, pack, gen, script, trace.
+"""The ``swarmvm`` command line: check, pack, gen, script, trace, footprint.
 
 Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on stderr and
 exit status 2, before anything is written."""
@@ -95,16 +95,42 @@ def pack(inputs, output, no_names):
 @click.option("-t", "--target", type=click.Choice(sorted(TARGETS)), required=True)
 @click.option("-o", "--output", "outdir", required=True, help="Directory to write into.")
 @click.option("--name", help="Model name for generated files (default: the input's file stem).")
+@click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
+              help="Decide the uncontrollable pair YES/NO (e.g. capableTask/notCapableTask) with an "
+                   "online classifier on features the application supplies (docs/learning.md). Repeatable.")
 @reports_errors
-def gen(inputs, target, outdir, name):
+def gen(inputs, target, outdir, name, learned):
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
 
     Several Nadzoru 2 XML automata make one set of local supervisors. A controller skeleton
     that already exists is never overwritten."""
     compiled = compile_inputs(inputs, name=name)
     _warn(compiled)
-    for path in write_outputs(outdir, generate(compiled, target)):
+    pairs = _learned_pairs(inputs[0], compiled.model, target, learned)
+    for path in write_outputs(outdir, generate(compiled, target, learned_checks=pairs)):
         click.echo(path)
+
+
+def _learned_pairs(source, model, target, specs):
+    """``--learned-check YES/NO`` values as [{yes, no}] of bare event names, validated: two
+    distinct uncontrollable events of the model, each in one pair only."""
+    if specs and not TARGETS[target].learned_templates:
+        raise InputError(source, "--learned-check", "target %s does not generate learned checks" % target)
+    pairs, used = [], set()
+    for spec in specs:
+        names = [n[3:] if n.startswith("EV_") else n for n in spec.split("/")]
+        if len(names) != 2 or names[0] == names[1]:
+            raise InputError(source, "--learned-check", "%r is not YES/NO (two different event names)" % spec)
+        for bare in names:
+            if bare not in model.events:
+                raise InputError(source, "--learned-check", "no event named %r" % bare)
+            if model.controllable[model.events.index(bare)]:
+                raise InputError(source, "--learned-check", "%s is controllable: only checks can be learned" % bare)
+            if bare in used:
+                raise InputError(source, "--learned-check", "%s is in two learned checks" % bare)
+            used.add(bare)
+        pairs.append(dict(yes=names[0], no=names[1]))
+    return pairs
 
 
 @main.command()
@@ -151,3 +177,38 @@ def trace(inputs, script_path, seed, input_mode, control, policy):
     machine = vm.VM(image, inputs=input_mode, control=control, policy=policy, seed=seed)
     for line in vm.replay(machine, rows):
         click.echo(line)
+
+
+@main.command()
+@click.argument("elfs", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
+@click.option("--json", "json_path", type=click.Path(dir_okay=False), help="Also write the report as JSON.")
+@click.option("--kilobot-flash", default=28672, show_default=True, type=click.IntRange(0),
+              help="Flash a Kilobot image may use (bytes below the bootloader).")
+@click.option("--kilobot-stack", default=1024, show_default=True, type=click.IntRange(0),
+              help="SRAM a Kilobot image must leave for the stack (of 2,048 bytes).")
+@click.option("--vm-limit", default=100000, show_default=True, type=click.IntRange(0),
+              help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
+def footprint(elfs, json_path, kilobot_flash, kilobot_stack, vm_limit):
+    """Report flash and static RAM of linked VM images, split into VM core, tables and application.
+
+    ELFS are linked images named <supervisor>.elf; the target comes from the machine (AVR:
+    kilobot, ARM: capbot). Prints Markdown (docs/footprint.md); exits with status 1 and a
+    one-line reason when an image exceeds a limit."""
+    from elftools.common.exceptions import ELFError
+
+    from . import footprint as fp
+    try:
+        rows = [fp.measure(path) for path in elfs]
+    except (fp.FootprintError, ELFError) as exc:
+        click.echo("swarmvm: error: %s" % exc, err=True)
+        sys.exit(2)
+    limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
+    click.echo(fp.report_markdown(rows, limits), nl=False)
+    if json_path:
+        directory, name = os.path.split(os.path.abspath(json_path))
+        write_outputs(directory, {name: (fp.report_json(rows, limits).encode(), False)})
+    problems = fp.violations(rows, limits)
+    if problems:
+        more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
+        click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
+        sys.exit(1)

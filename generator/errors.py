@@ -2,6 +2,10 @@
 
 The CLI prints it as ``swarmvm: error: <line>`` and exits with status 2; nothing is written."""
 
+import os
+
+MAX_BYTES = 1 << 20   # no real supervisor comes near it (the corpus's largest is 11 kB)
+
 
 class InputError(Exception):
     """Bad input. ``where`` names the supervisor / state / event concerned, if any."""
@@ -13,3 +17,15 @@ class InputError(Exception):
     def __str__(self):
         parts = [self.file, self.key, self.where, self.message]
         return ": ".join(part for part in parts if part)
+
+
+def read_input(path):
+    """The bytes of an input file, refusing one that cannot be read or is over MAX_BYTES."""
+    try:
+        size = os.path.getsize(path)
+        if size > MAX_BYTES:
+            raise InputError(path, "", "file is %d bytes, over the %d-byte limit" % (size, MAX_BYTES))
+        with open(path, "rb") as handle:
+            return handle.read()
+    except OSError as exc:
+        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)

@@ -56,3 +56,12 @@ def pack(tables, source, names=True):
 def digest(image):
     """Short content digest for banners: the first 16 hex digits of the image's SHA-256."""
     return hashlib.sha256(image).hexdigest()[:16]
+
+
+def chunks(image, size=8):
+    """The image as stream chunks (runtime_c/swarmvm_stream.h): a sequence number, then
+    ``size`` bytes of the image, the last chunk padded with zeros."""
+    count = (len(image) + size - 1) // size
+    if count > 256:
+        raise ValueError("an image of %d bytes needs %d chunks; a stream carries at most 256" % (len(image), count))
+    return [bytes([k]) + image[k * size:(k + 1) * size].ljust(size, b"\0") for k in range(count)]

@@ -8,8 +8,8 @@ import os
 import xml.etree.ElementTree as ET
 from fractions import Fraction
 
-from .errors import InputError
-from .load_supervisor import MAX_BYTES, NAME
+from .errors import InputError, read_input
+from .load_supervisor import NAME
 from .model import LocalSupervisor, Supervisors, Transition
 
 TRUE = {"true": True, "false": False}
@@ -32,15 +32,10 @@ def _int_attr(path, element, attribute, where):
 
 
 def load_automaton(path):
-    """One XML file -> (events {name: (controllable, public)}, LocalSupervisor, probabilistic)."""
+    """One XML file -> (events {name: (controllable, public)}, LocalSupervisor, probabilistic, bytes)."""
+    raw = read_input(path)
     try:
-        size = os.path.getsize(path)
-    except OSError as exc:
-        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
-    if size > MAX_BYTES:
-        raise InputError(path, "", "file is %d bytes, over the %d-byte limit" % (size, MAX_BYTES))
-    try:
-        root = ET.parse(path).getroot()
+        root = ET.fromstring(raw)
     except ET.ParseError as exc:
         raise InputError(path, "", "not valid XML: %s" % exc)
     if root.tag != "model" or root.get("type") != "FSA":
@@ -103,14 +98,14 @@ def load_automaton(path):
             if probability is None or not 0 <= probability <= 1:
                 raise InputError(path, "probability", "%r is not a probability in [0, 1]" % element.get("probability"), where)
         row.append(Transition(name, states[target], probability))
-    return events, LocalSupervisor(frozenset(events), states[initial], table), probabilistic
+    return events, LocalSupervisor(frozenset(events), states[initial], table), probabilistic, len(raw)
 
 
 def load_automata(paths):
     """Several XML files -> one :class:`Supervisors` (one local supervisor per file)."""
     events, supervisors, probabilistic, size = {}, [], False, 0
     for path in paths:
-        declared, supervisor, prob = load_automaton(path)
+        declared, supervisor, prob, nbytes = load_automaton(path)
         for name, flags in declared.items():
             if name in events and events[name] != flags:
                 what = "controllable" if events[name][0] != flags[0] else "public"
@@ -118,7 +113,7 @@ def load_automata(paths):
             events.setdefault(name, flags)
         supervisors.append(supervisor)
         probabilistic = probabilistic or prob
-        size += os.path.getsize(path)
+        size += nbytes
     if probabilistic:
         for supervisor in supervisors:
             for row in supervisor.states:

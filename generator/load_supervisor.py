@@ -12,10 +12,9 @@ from fractions import Fraction
 
 import yaml
 
-from .errors import InputError
+from .errors import InputError, read_input
 from .model import LocalSupervisor, Supervisors, Transition
 
-MAX_BYTES = 1 << 20
 REQUIRED = ("num_events", "num_supervisors", "events", "ev_controllable", "sup_events",
             "sup_init_state", "sup_data_pos", "sup_data")
 OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", "sup_data_prob")
@@ -73,14 +72,7 @@ def _show(value):
 def load_supervisor(path):
     """Read ``path`` and return :class:`Supervisors`, or raise InputError."""
     name = path
-    try:
-        size = os.path.getsize(path)
-    except OSError as exc:
-        raise InputError(name, "", "cannot read file (%s)" % exc.strerror)
-    if size > MAX_BYTES:
-        raise InputError(name, "", "file is %d bytes, over the %d-byte limit" % (size, MAX_BYTES))
-    with open(path, "rb") as handle:
-        raw = handle.read()
+    raw = read_input(path)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -94,7 +86,7 @@ def load_supervisor(path):
     if not isinstance(doc, dict):
         raise InputError(name, "", "expected a mapping of keys at the top level, got %s" % _show(doc))
     spec = _parse(_Reader(name, doc))
-    spec.size_bytes = size
+    spec.size_bytes = len(raw)
     return spec
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 TEMPLATES = ROOT / "templates"
 RUNTIME_PY = ROOT / "runtime_py" / "swarmvm_vm.py"
+RUNTIME_LEARN_PY = ROOT / "runtime_py" / "swarmvm_learn.py"
 RUNTIME_C = ROOT / "runtime_c"
 RUNTIME_CPP = ROOT / "runtime_cpp"
 FIRMWARE = ROOT / "firmware"

@@ -7,7 +7,7 @@ names may use ``{name}``; ``keep`` marks user-edited files that are never overwr
 from dataclasses import dataclass, field
 
 from .render import context, render
-from .runtime import RUNTIME_PY
+from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY
 
 
 @dataclass(frozen=True)
@@ -15,14 +15,59 @@ class Target:
     description: str
     templates: tuple                     # (template, output name, keep)
     copies: tuple = field(default=())    # (source path, output name)
+    learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
+    learned_copies: tuple = field(default=())
 
+
+C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in ("swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c"))
 
 TARGETS = {
     "python": Target(
         "Python VM: table module, controller skeleton, the runtime (stdlib only)",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
                    ("python/controller.py.j2", "{name}_controller.py", True)),
+        copies=((RUNTIME_PY, "swarmvm_vm.py"),),
+        learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
+        learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),)),
+    "argos": Target(
+        "ARGoS e-puck controller (C++17): image header, CCI_Controller skeleton, CMakeLists.txt, example .argos",
+        templates=(("argos/image.hpp.j2", "{name}_image.hpp", False),
+                   ("argos/controller.h.j2", "{name}_controller.h", True),
+                   ("argos/controller.cpp.j2", "{name}_controller.cpp", True),
+                   ("argos/CMakeLists.txt.j2", "CMakeLists.txt", True),
+                   ("argos/experiment.argos.j2", "{name}.argos", True)),
+        copies=((RUNTIME_CPP / "swarmvm.hpp", "swarmvm.hpp"), (RUNTIME_CPP / "swarmvm_argos.hpp", "swarmvm_argos.hpp"))),
+    "pipuck": Target(
+        "Pi-puck controller (Python): tables, the Python VM, fixed-rate loop, robot adapter (real and --sim)",
+        templates=(("python/tables.py.j2", "{name}_tables.py", False),
+                   ("pipuck/robot.py.j2", "pipuck_robot.py", False),
+                   ("pipuck/controller.py.j2", "{name}_controller.py", True)),
         copies=((RUNTIME_PY, "swarmvm_vm.py"),)),
+    "c": Target(
+        "C VM (C99, host or microcontroller): tables with the image as a const array, dispatch glue, control loop, Makefile, controller skeleton",
+        templates=(("c/tables.h.j2", "{name}_tables.h", False),
+                   ("c/tables.c.j2", "{name}_tables.c", False),
+                   ("c/main.c.j2", "{name}_main.c", False),
+                   ("c/Makefile.j2", "Makefile", False),
+                   ("c/controller.c.j2", "{name}_controller.c", True)),
+        copies=C_RUNTIME_COPIES),
+    "kilobot": Target(
+        "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, Makefile, controller skeleton",
+        templates=(("c/tables.h.j2", "{name}_tables.h", False),
+                   ("kilobot/tables.c.j2", "{name}_tables.c", False),
+                   ("kilobot/app.c.j2", "{name}_app.c", False),
+                   ("kilobot/Makefile.j2", "Makefile", False),
+                   ("kilobot/controller.c.j2", "{name}_controller.c", True)),
+        copies=C_RUNTIME_COPIES),
+    "capbot": Target(
+        "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
+        templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
+                   ("capbot/prj.conf.j2", "prj.conf", False),
+                   ("capbot/main.c.j2", "src/main.c", False),
+                   ("c/tables.h.j2", "src/{name}_tables.h", False),
+                   ("c/tables.c.j2", "src/{name}_tables.c", False),
+                   ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
+        copies=tuple((source, "src/" + output) for source, output in C_RUNTIME_COPIES)),
 }
 
 
@@ -35,4 +80,9 @@ def generate(compiled, target, **options):
         files[output.format(name=compiled.name)] = (render(template, values), keep)
     for source, output in spec.copies:
         files[output.format(name=compiled.name)] = (source.read_bytes(), False)
+    if options.get("learned_checks"):
+        for template, output, keep in spec.learned_templates:
+            files[output.format(name=compiled.name)] = (render(template, values), keep)
+        for source, output in spec.learned_copies:
+            files[output.format(name=compiled.name)] = (source.read_bytes(), False)
     return files

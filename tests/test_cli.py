@@ -72,3 +72,17 @@ def test_generated_python_controller_runs_and_is_never_overwritten(tmp_path):
                          cwd=tmp_path, capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "['EV_capableTask', 'EV_bid']"
+
+
+def test_generated_table_modules_import_for_every_corpus_supervisor(tmp_path):
+    """Every corpus supervisor (public inputs, empty names, probabilities) gives a table module
+    Python can import, whose constants match the image."""
+    for path in sorted(CORPUS.glob("*/*.yaml")):
+        out = tmp_path / path.stem
+        assert CliRunner().invoke(main, ["gen", str(path), "--target", "python", "-o", str(out)]).exit_code == 0
+        run = subprocess.run([sys.executable, "-c", "import %s_tables as t, swarmvm_vm as v\n"
+                              "i = v.Image.parse(t.IMAGE)\n"
+                              "assert [getattr(t, n) for n in t.EVENTS] == list(range(i.num_events))\n"
+                              "assert list(t.EVENTS) == [i.event_name(e) for e in range(i.num_events)]" % path.stem],
+                             cwd=out, capture_output=True, text=True)
+        assert run.returncode == 0, (path.name, run.stderr)

@@ -8,7 +8,8 @@ import pytest
 from click.testing import CliRunner
 
 from swarmvm.cli import main
-from swarmvm.load_supervisor import MAX_BYTES, load_supervisor
+from swarmvm.errors import MAX_BYTES
+from swarmvm.load_supervisor import load_supervisor
 from swarmvm.pipeline import compile_inputs
 
 INPUTS = Path(__file__).parent / "inputs"

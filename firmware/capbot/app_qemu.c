@@ -1,0 +1,134 @@
+/*
+ * Bare-metal main of a generated CapBot application, for QEMU mps2-an386: the tables, dispatch
+ * and controller that run on the robot (src/ of `swarmvm gen --target capbot`, everything but
+ * the Zephyr main.c), stepped SVM_APP_STEPS times without Zephyr, with the default options and
+ * seed, printing the canonical trace (docs/conformance.md) through semihosting.
+ *
+ * QEMU has no world to sense, so this main plays the environment: at each step every
+ * uncontrollable event, in event order, occurs with probability 1/4 (xorshift32 seeded with
+ * ENV_SEED, index mapping of docs/semantics.md: below(4) == 0), on top of what the controller's
+ * own check says. The same draw in Python gives the event script of the reference trace.
+ *
+ * Build with -DSVM_APP=<model name> -DSVM_APP_HEADER='"<model name>_tables.h"' and the model's
+ * limit flags; the CapBot API comes from capbot.h / capbot_qemu.c (stand-ins).
+ */
+#include <stdio.h>
+
+#include "capbot.h"
+#include SVM_APP_HEADER
+
+#ifndef SVM_APP_STEPS
+#define SVM_APP_STEPS 20
+#endif
+
+#define ENV_SEED 2024u
+
+#define CAT_(a, b) a##b
+#define CAT(a, b) CAT_(a, b)
+#define APP_DISPATCH CAT(SVM_APP, _dispatch)
+#define APP_LOAD CAT(SVM_APP, _load)
+
+static svm_vm_t vm;
+static uint8_t fired[SVM_MAX_EVENTS + 1];
+static uint8_t num_fired;
+
+static uint32_t env_rng = ENV_SEED;
+static uint8_t occurs[SVM_MASK_BYTES];
+
+static uint32_t env_next(void)
+{
+    env_rng ^= env_rng << 13;
+    env_rng ^= env_rng >> 17;
+    env_rng ^= env_rng << 5;
+    return env_rng;
+}
+
+/* This step's environment: which uncontrollable events occur whatever the checks say. */
+static void draw_environment(void)
+{
+    uint8_t e;
+    for (e = 0; e < svm_num_events(&vm); e++) {
+        uint8_t bit = (uint8_t)(1u << (e & 7u));
+        occurs[e >> 3] = (uint8_t)(occurs[e >> 3] & ~bit);
+        if (!svm_is_controllable(&vm, e) && ((env_next() >> 16) * 4u >> 16) == 0u) {
+            occurs[e >> 3] = (uint8_t)(occurs[e >> 3] | bit);
+        }
+    }
+}
+
+/* The generated dispatch, with the environment added to the checks and each action noted:
+ * the events fired in this step. */
+static uint8_t traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
+{
+    uint8_t result = APP_DISPATCH(machine, event, op);
+    if (op == SVM_OP_CHECK) {
+        return (uint8_t)(result || ((occurs[event >> 3] >> (event & 7u)) & 1u));
+    }
+    if (num_fired < sizeof fired) {
+        fired[num_fired++] = event;
+    }
+    return result;
+}
+
+static void put_uint(unsigned long value)
+{
+    char digits[12];
+    int n = 0;
+    do {
+        digits[n++] = (char)('0' + value % 10u);
+        value /= 10u;
+    } while (value != 0u);
+    while (n != 0) {
+        (void)putchar(digits[--n]);
+    }
+}
+
+static void put_trace_line(unsigned long step)
+{
+    char name[48];
+    uint8_t k;
+    put_uint(step);
+    (void)putchar(' ');
+    if (num_fired == 0u) {
+        (void)putchar('-');
+    }
+    for (k = 0; k < num_fired; k++) {
+        if (k != 0u) {
+            (void)putchar(',');
+        }
+        (void)svm_event_name(&vm, fired[k], name, sizeof name);
+        (void)fputs("EV_", stdout);
+        (void)fputs(name, stdout);
+    }
+    (void)putchar(' ');
+    for (k = 0; k < svm_num_supervisors(&vm); k++) {
+        if (k != 0u) {
+            (void)putchar(',');
+        }
+        put_uint(svm_state(&vm, k));
+    }
+    (void)putchar(' ');
+    put_uint(svm_violations(&vm));
+    (void)putchar('\n');
+}
+
+int main(void)
+{
+    unsigned long step;
+    int err = cb_led_init() | cb_btn_init() | cb_measure_init() | cb_motor_init();
+    if (err) {
+        return 2;
+    }
+    svm_init(&vm);
+    svm_set_dispatch(&vm, traced_dispatch);
+    if (APP_LOAD(&vm) != SVM_OK) {
+        return 1;
+    }
+    for (step = 1; step <= SVM_APP_STEPS; step++) {
+        num_fired = 0;
+        draw_environment();
+        (void)svm_step(&vm);
+        put_trace_line(step);
+    }
+    return 0;
+}

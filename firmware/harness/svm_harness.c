@@ -1,0 +1,242 @@
+/*
+ * swarmvm conformance harness, common part (platform interface in svm_harness.h).
+ *
+ * One build per supervisor runs every run of its batch: options and seeds are run-time flags
+ * of the VM. The event scripts are rows of event masks in program memory; the checks return
+ * the current row's bits. Pass 0 binds callbacks at compile time (a dispatch function, no
+ * RAM); pass 1 copies the image to RAM, binds callbacks at run time (svm_bind; left out with
+ * SVM_CASES_RUNTIME_BINDINGS 0 when RAM is short) and swaps the copy in with svm_load, so
+ * both the flash and the loaded path are compared with the reference.
+ */
+#include "svm_harness.h"
+#include "swarmvm.h"
+#include "svm_cases.h"
+
+#include <stddef.h>
+
+static svm_vm_t vm;
+static uint8_t row[SVM_MASK_BYTES];
+static uint8_t fired[SVM_MAX_EVENTS + 1];
+static uint8_t num_fired;
+
+/* Bit e%8 of a mask byte, by table: AVR shifts by a variable count one bit per cycle pair, and
+ * the cycle benchmark should measure the VM, not the harness's checks. */
+static const uint8_t bit_of[8] = {0x01u, 0x02u, 0x04u, 0x08u, 0x10u, 0x20u, 0x40u, 0x80u};
+
+static uint8_t row_has(uint8_t event)
+{
+    return (uint8_t)((row[event >> 3] & bit_of[event & 7u]) != 0u);
+}
+
+static void record(uint8_t event)
+{
+    if (num_fired < sizeof fired) {
+        fired[num_fired++] = event;
+    }
+}
+
+/* Pass 0: compile-time dispatch. */
+static uint8_t dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
+{
+    (void)machine;
+    if (op == SVM_OP_CHECK) {
+        return row_has(event);
+    }
+    record(event);
+    return 0;
+}
+
+#if SVM_CASES_RAM_COPY
+static uint8_t ram_image[SVM_CASES_IMAGE_LEN];
+#endif
+
+#if SVM_CASES_RAM_COPY && SVM_CASES_RUNTIME_BINDINGS
+/* Pass 1: runtime bindings; the event index travels in the data pointer. */
+static svm_binding_t bindings[SVM_MAX_EVENTS];
+
+static unsigned char bound_check(void *data)
+{
+    return row_has((uint8_t)(uintptr_t)data);
+}
+
+static void bound_action(void *data)
+{
+    record((uint8_t)(uintptr_t)data);
+}
+#endif
+
+static void put_str(const char *s)
+{
+    while (*s != '\0') {
+        svm_harness_putc(*s++);
+    }
+}
+
+static void put_uint(uint32_t value)
+{
+    char digits[10];
+    uint8_t n = 0;
+    do {
+        digits[n++] = (char)('0' + value % 10u);
+        value /= 10u;
+    } while (value != 0u);
+    while (n != 0u) {
+        svm_harness_putc(digits[--n]);
+    }
+}
+
+static void put_event(uint8_t event)
+{
+    char name[48];
+    put_str("EV_");
+    if (svm_has_names(&vm)) {
+        (void)svm_event_name(&vm, event, name, sizeof name);
+        put_str(name);
+    } else {
+        put_uint(event);
+    }
+}
+
+static void put_trace_line(uint16_t step)
+{
+    uint8_t k;
+    put_uint(step);
+    svm_harness_putc(' ');
+    if (num_fired == 0u) {
+        svm_harness_putc('-');
+    }
+    for (k = 0; k < num_fired; k++) {
+        if (k != 0u) {
+            svm_harness_putc(',');
+        }
+        put_event(fired[k]);
+    }
+    svm_harness_putc(' ');
+    for (k = 0; k < svm_num_supervisors(&vm); k++) {
+        if (k != 0u) {
+            svm_harness_putc(',');
+        }
+        put_uint(svm_state(&vm, k));
+    }
+    svm_harness_putc(' ');
+    put_uint(svm_violations(&vm));
+}
+
+static uint32_t flash_u32(const uint8_t *p)
+{
+    return (uint32_t)SVM_FLASH_BYTE(p) | ((uint32_t)SVM_FLASH_BYTE(p + 1) << 8) |
+           ((uint32_t)SVM_FLASH_BYTE(p + 2) << 16) | ((uint32_t)SVM_FLASH_BYTE(p + 3) << 24);
+}
+
+static void run_all(uint8_t pass)
+{
+    uint16_t run, step;
+    uint8_t i;
+    for (run = 0; run < SVM_CASES_RUNS; run++) {
+        const uint8_t *spec = svm_case_runs + 6u * run;
+        const uint8_t *rows = svm_case_rows +
+                              (uint32_t)SVM_FLASH_BYTE(spec + 1) * SVM_CASES_STEPS * SVM_CASES_MASK_BYTES;
+        svm_set_options(&vm, SVM_FLASH_BYTE(spec), flash_u32(spec + 2));
+        svm_reset(&vm);
+        svm_harness_putc('@');
+        put_uint(pass);
+        svm_harness_putc(' ');
+        put_uint(run);
+        svm_harness_putc('\n');
+        for (step = 0; step < SVM_CASES_STEPS; step++) {
+            for (i = 0; i < SVM_CASES_MASK_BYTES; i++) {
+                row[i] = SVM_FLASH_BYTE(rows + step * SVM_CASES_MASK_BYTES + i);
+            }
+            num_fired = 0;
+#ifdef SVM_HARNESS_CYCLES
+            {
+                uint32_t cycles;
+                svm_harness_timer_start();
+                (void)svm_step(&vm);
+                cycles = svm_harness_timer_stop();
+                put_trace_line((uint16_t)(step + 1u));
+                put_str(" ~");
+                put_uint(cycles);
+            }
+#else
+            (void)svm_step(&vm);
+            put_trace_line((uint16_t)(step + 1u));
+#endif
+            svm_harness_putc('\n');
+        }
+    }
+}
+
+#if SVM_CASES_RAM_COPY
+static void run_loaded(void)
+{
+    uint16_t i;
+    int result;
+#if SVM_CASES_RUNTIME_BINDINGS
+    uint8_t e;
+    svm_set_bindings(&vm, bindings, SVM_MAX_EVENTS);
+    for (e = 0; e < svm_num_events(&vm); e++) {
+        svm_check_fn check = svm_is_controllable(&vm, e) ? (svm_check_fn)0 : bound_check;
+        (void)svm_bind(&vm, e, bound_action, check, (void *)(uintptr_t)e);
+    }
+    svm_set_dispatch(&vm, (svm_dispatch_fn)0);
+#endif
+    for (i = 0; i < SVM_CASES_IMAGE_LEN; i++) {
+        ram_image[i] = SVM_FLASH_BYTE(svm_case_image + i);
+    }
+    /* A corrupted copy must be refused and leave the running logic in place. */
+    ram_image[SVM_CASES_IMAGE_LEN / 2u] ^= 0x01u;
+    result = svm_load(&vm, ram_image, SVM_CASES_IMAGE_LEN);
+    ram_image[SVM_CASES_IMAGE_LEN / 2u] ^= 0x01u;
+    put_str("@refused ");
+    put_uint((uint32_t)result);
+    svm_harness_putc('\n');
+    result = svm_load(&vm, ram_image, SVM_CASES_IMAGE_LEN);
+    if (result != SVM_OK) {
+        put_str("@error ");
+        put_uint((uint32_t)result);
+        svm_harness_putc('\n');
+        return;
+    }
+    run_all(1);
+}
+#endif
+
+#ifdef SVM_HARNESS_EEPROM
+/* Pass 2: the image copied to EEPROM by the platform and loaded from there. */
+static void run_from_eeprom(void)
+{
+    const uint8_t *image = svm_harness_to_eeprom(svm_case_image, SVM_CASES_IMAGE_LEN);
+    int result = svm_load_E(&vm, image, SVM_CASES_IMAGE_LEN);
+    if (result != SVM_OK) {
+        put_str("@error ");
+        put_uint((uint32_t)result);
+        svm_harness_putc('\n');
+        return;
+    }
+    run_all(2);
+}
+#endif
+
+int svm_harness_run(void)
+{
+    int result;
+    svm_init(&vm);
+    svm_set_dispatch(&vm, dispatch);
+    result = svm_load_P(&vm, svm_case_image, SVM_CASES_IMAGE_LEN);
+    if (result != SVM_OK) {
+        put_str("@error ");
+        put_uint((uint32_t)result);
+        put_str("\n@end\n");
+        return 1;
+    }
+    run_all(0);
+#if SVM_CASES_RAM_COPY
+    run_loaded();
+#endif
+#ifdef SVM_HARNESS_EEPROM
+    run_from_eeprom();
+#endif
+    put_str("@end\n");
+    return 0;
+}

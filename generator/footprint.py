@@ -1,0 +1,227 @@
+"""Memory footprint of linked VM images: flash and static RAM, split into VM core, tables and
+application, with the Kilobot's hard limits and the seed's 100 kB KPI (docs/footprint.md).
+
+Only linked ELF files are read (pyelftools), so the figures are what the device holds:
+
+- a section is *flash* when it is loaded and read-only (code, constants, the image in
+  PROGMEM), *RAM* when it is writable and takes no file space (``.bss``, ``.noinit``), and
+  *both* when it is writable with contents (``.data``: its initialiser sits in flash and is
+  copied to RAM at reset). AVR's ``.eeprom``, fuse, lock and signature sections are neither.
+- the **tables** are the table image: the object whose bytes start with the image magic and
+  whose size is the image's own length field, wherever the build put it.
+- the **VM core** is what ``runtime_c/*.c`` defines: a global symbol whose name one of those
+  files defines at file scope, a local symbol listed after the ``STT_FILE`` entry of one of
+  those files, and the VM instance (an object named ``vm`` or ``..._vm``) wherever it lives.
+- the **application** is the rest of each total: start-up code, C library, generated glue,
+  callbacks, and bytes no symbol accounts for (vector tables, alignment).
+"""
+
+import json
+import re
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from elftools.elf.constants import SH_FLAGS
+from elftools.elf.elffile import ELFFile
+
+from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_PY
+
+MAGIC = b"SVMI"
+IMAGE_LENGTH_AT = 14                   # docs/image-format.md: u16 L at offset 14
+TARGET_OF_MACHINE = {"EM_AVR": "kilobot", "EM_ARM": "capbot"}
+NOT_MEMORY = (".eeprom", ".fuse", ".lock", ".signature", ".user_signatures")
+VM_INSTANCE = re.compile(r"(^|_)vm$")
+# An external definition in the runtime's C sources: a line starting in column 0 with a type
+# (not static) and ending the declarator at '(' (function), '[' / '=' / ';' (object).
+DEFINITION = re.compile(r"^(?!typedef|extern|static|#)[A-Za-z_][\w\s\*]*?\**\b([A-Za-z_]\w*)\s*[\(\[=;]", re.M)
+
+KILOBOT_FLASH = 28672                  # 32 KB minus the bootloader at 0x7000
+KILOBOT_SRAM = 2048
+KILOBOT_MIN_STACK = 1024
+VM_KPI = 100000                        # the seed's KPI: a VM below 100 kB
+SEED_KPI_SOURCE = {"C++ VM (published)": 15699, "Python VM (published)": 7343}
+
+
+@dataclass(frozen=True)
+class Limits:
+    kilobot_flash: int = KILOBOT_FLASH
+    kilobot_sram: int = KILOBOT_SRAM
+    kilobot_min_stack: int = KILOBOT_MIN_STACK
+    vm: int = VM_KPI
+
+
+@dataclass
+class Split:
+    total: int = 0
+    core: int = 0
+    tables: int = 0
+    application: int = 0
+
+
+@dataclass
+class Footprint:
+    target: str
+    supervisor: str
+    elf: str
+    flash: Split = field(default_factory=Split)
+    ram: Split = field(default_factory=Split)
+
+    @property
+    def vm(self):
+        """The VM proper (core and tables, flash and RAM), the figure the seed's KPI bounds."""
+        return self.flash.core + self.flash.tables + self.ram.core + self.ram.tables
+
+
+class FootprintError(Exception):
+    """An ELF that cannot be measured (no table image in it, unknown machine)."""
+
+
+def runtime_names(runtime=RUNTIME_C):
+    """(global names the runtime's C sources define, their file names)."""
+    names, files = set(), set()
+    for source in sorted(Path(runtime).glob("*.c")):
+        files.add(source.name)
+        names.update(DEFINITION.findall(source.read_text()))
+    return names, files
+
+
+def _memory_kind(section):
+    """'flash', 'ram', 'both' or None for a section of a linked image."""
+    flags = section["sh_flags"]
+    if not flags & SH_FLAGS.SHF_ALLOC or section.name in NOT_MEMORY or section["sh_size"] == 0:
+        return None
+    if not flags & SH_FLAGS.SHF_WRITE:
+        return "flash"
+    return "ram" if section["sh_type"] == "SHT_NOBITS" else "both"
+
+
+def _symbols(elf):
+    """(symbol, defining file or None) for every sized object and function, aliases once."""
+    table = elf.get_section_by_name(".symtab")
+    if table is None:
+        raise FootprintError("no symbol table (stripped image)")
+    seen, current_file = set(), None
+    for symbol in table.iter_symbols():
+        kind, bind = symbol["st_info"]["type"], symbol["st_info"]["bind"]
+        if kind == "STT_FILE":
+            current_file = symbol.name
+            continue
+        if kind not in ("STT_FUNC", "STT_OBJECT") or symbol["st_size"] == 0:
+            continue
+        if not isinstance(symbol["st_shndx"], int):
+            continue
+        key = (symbol["st_shndx"], symbol["st_value"] & ~1)
+        if key in seen:
+            continue
+        seen.add(key)
+        yield symbol, (current_file if bind == "STB_LOCAL" else None)
+
+
+def _is_image(elf, symbol):
+    """Whether an object symbol holds a table image (magic, and its length field = its size)."""
+    if symbol["st_info"]["type"] != "STT_OBJECT" or symbol["st_size"] < IMAGE_LENGTH_AT + 4:
+        return False
+    section = elf.get_section(symbol["st_shndx"])
+    if section["sh_type"] == "SHT_NOBITS":
+        return False
+    start = symbol["st_value"] - section["sh_addr"]
+    head = section.data()[start:start + IMAGE_LENGTH_AT + 2]
+    length = int.from_bytes(head[IMAGE_LENGTH_AT:IMAGE_LENGTH_AT + 2], "little")
+    return head[:4] == MAGIC and length == symbol["st_size"]
+
+
+def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
+    """The Footprint of one linked ELF; target from its machine, supervisor from its name."""
+    core_names, core_files = runtime_names(runtime)
+    with open(path, "rb") as handle:
+        elf = ELFFile(handle)
+        machine = elf["e_machine"]
+        if target is None:
+            if machine not in TARGET_OF_MACHINE:
+                raise FootprintError("%s: machine %s is not a known VM target" % (path, machine))
+            target = TARGET_OF_MACHINE[machine]
+        result = Footprint(target, supervisor or Path(path).stem, str(path))
+        kinds = {}
+        for index, section in enumerate(elf.iter_sections()):
+            kind = _memory_kind(section)
+            kinds[index] = kind
+            if kind in ("flash", "both"):
+                result.flash.total += section["sh_size"]
+            if kind in ("ram", "both"):
+                result.ram.total += section["sh_size"]
+        images = 0
+        for symbol, local_file in _symbols(elf):
+            kind = kinds.get(symbol["st_shndx"])
+            if kind is None:
+                continue
+            if _is_image(elf, symbol):
+                bucket = "tables"
+                images += 1
+            elif (local_file in core_files if local_file is not None else symbol.name in core_names) \
+                    or (symbol["st_info"]["type"] == "STT_OBJECT" and VM_INSTANCE.search(symbol.name)):
+                bucket = "core"
+            else:
+                continue
+            for split, counted in ((result.flash, ("flash", "both")), (result.ram, ("ram", "both"))):
+                if kind in counted:
+                    setattr(split, bucket, getattr(split, bucket) + symbol["st_size"])
+        if images == 0:
+            raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, MAGIC.decode()))
+    for split in (result.flash, result.ram):
+        split.application = split.total - split.core - split.tables
+    return result
+
+
+def violations(footprints, limits=Limits()):
+    """One line per limit a footprint exceeds (empty: all within limits)."""
+    found = []
+    for f in footprints:
+        where = "%s/%s" % (f.target, f.supervisor)
+        if f.target == "kilobot":
+            if f.flash.total > limits.kilobot_flash:
+                found.append("%s: flash %d B exceeds the Kilobot's %d B" % (where, f.flash.total, limits.kilobot_flash))
+            stack = limits.kilobot_sram - f.ram.total
+            if stack < limits.kilobot_min_stack:
+                found.append("%s: static RAM %d B leaves %d B of the %d B SRAM for the stack, below %d B"
+                             % (where, f.ram.total, stack, limits.kilobot_sram, limits.kilobot_min_stack))
+        if f.vm > limits.vm:
+            found.append("%s: the VM takes %d B, above the %d B KPI" % (where, f.vm, limits.vm))
+    return found
+
+
+def source_sizes():
+    """Bytes of source of each runtime, to compare with the seed's KPI table."""
+    sizes = {"Python VM (runtime_py/swarmvm_vm.py)": RUNTIME_PY.stat().st_size,
+             "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
+                 sum((RUNTIME_C / n).stat().st_size for n in ("swarmvm.c", "swarmvm.h"))}
+    header = RUNTIME_CPP / "swarmvm.hpp"
+    if header.exists():
+        sizes["C++ VM (runtime_cpp/swarmvm.hpp)"] = header.stat().st_size
+    return sizes
+
+
+def report_markdown(footprints, limits=Limits()):
+    lines = ["# VM footprint", "",
+             "Bytes in the linked images (docs/footprint.md says what is counted where). "
+             "Flash = code + constants + .data initialisers; RAM = .data + .bss (static, no stack).", "",
+             "| target | supervisor | flash | VM core | tables | application | RAM | VM core | tables | application | VM |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for f in sorted(footprints, key=lambda f: (f.target, f.supervisor)):
+        lines.append("| %s | %s | %d | %d | %d | %d | %d | %d | %d | %d | %d |" % (
+            f.target, f.supervisor, f.flash.total, f.flash.core, f.flash.tables, f.flash.application,
+            f.ram.total, f.ram.core, f.ram.tables, f.ram.application, f.vm))
+    lines += ["", "Limits: Kilobot flash <= %d B, Kilobot stack >= %d B of %d B SRAM, VM <= %d B (seed KPI)."
+              % (limits.kilobot_flash, limits.kilobot_min_stack, limits.kilobot_sram, limits.vm), "",
+              "## Source size (the seed's KPI table counts bytes of source)", "",
+              "| VM | bytes |", "|---|---:|"]
+    for name, size in list(source_sizes().items()) + list(SEED_KPI_SOURCE.items()):
+        lines.append("| %s | %d |" % (name, size))
+    return "\n".join(lines) + "\n"
+
+
+def report_json(footprints, limits=Limits()):
+    rows = [dict(target=f.target, supervisor=f.supervisor, elf=f.elf, flash=asdict(f.flash),
+                 ram=asdict(f.ram), vm=f.vm) for f in sorted(footprints, key=lambda f: (f.target, f.supervisor))]
+    return json.dumps(dict(limits=asdict(limits), images=rows, source_bytes=source_sizes(),
+                           seed_source_bytes=SEED_KPI_SOURCE, violations=violations(footprints, limits)),
+                      indent=2) + "\n"

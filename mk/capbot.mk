@@ -1,0 +1,55 @@
+# CapBot (Cortex-M4F): generated Zephyr applications, built bare-metal for QEMU mps2-an386.
+#   make firmware   also builds $(BUILD)/capbot/energy_worker.elf and .bin (the bundled example)
+#   make emulate    also runs that image in QEMU and shows its trace
+#   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU)
+# $(BUILD)/capbot/<name>.elf exists for the example and for every corpus supervisor (file stem):
+# `swarmvm gen --target capbot` into $(BUILD)/capbot/gen/<name>/, then the generated src/
+# minus the Zephyr main.c, plus firmware/capbot/ (start-up, linker script, CapBot API
+# stand-ins, a bare-metal main printing the trace through semihosting).
+
+.PHONY: emulate capbot-firmware capbot-emulate bench-m4
+
+CAPBOT_FW := firmware/capbot
+CAPBOT_CC ?= arm-none-eabi-gcc
+CAPBOT_OBJCOPY ?= arm-none-eabi-objcopy
+CAPBOT_QEMU ?= qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting-config enable=on,target=native
+CAPBOT_STEPS ?= 12
+CAPBOT_FW_SOURCES := $(addprefix $(CAPBOT_FW)/,startup.c app_qemu.c capbot_qemu.c)
+CAPBOT_FW_DEPS := $(CAPBOT_FW_SOURCES) $(addprefix $(CAPBOT_FW)/,capbot.h m4.flags mps2_an386.ld)
+CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py)
+CAPBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
+
+firmware: capbot-firmware
+emulate: capbot-emulate
+bench: bench-m4
+
+capbot-firmware: $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/energy_worker.bin
+
+capbot-emulate: $(BUILD)/capbot/energy_worker.elf
+	@echo "CapBot (QEMU mps2-an386), energy_worker, first $(CAPBOT_STEPS) steps:"
+	@timeout 60 $(CAPBOT_QEMU) -kernel $< > $(BUILD)/capbot/energy_worker.trace; \
+	  status=$$?; head -n $(CAPBOT_STEPS) $(BUILD)/capbot/energy_worker.trace; \
+	  [ $$status -eq 0 ] || { echo "QEMU exit status $$status"; exit 1; }
+
+bench-m4:
+	$(PYTHON) benchmarks/m4_cycles.py --json $(BUILD)/bench/m4_cycles.json
+
+$(BUILD)/capbot/%.bin: $(BUILD)/capbot/%.elf
+	$(CAPBOT_OBJCOPY) -O binary $< $@
+
+# $(call capbot_rules,NAME,MODEL FILE): generate the application, link its bare-metal image.
+# The model's limit flags are the ones the generator wrote into its CMakeLists.txt.
+define capbot_rules
+$(BUILD)/capbot/gen/$1/CMakeLists.txt: $2 $(CAPBOT_GEN_DEPS)
+	$(SWARMVM) gen $2 --target capbot -o $(BUILD)/capbot/gen/$1 --name $1 >/dev/null
+
+$(BUILD)/capbot/$1.elf: $(BUILD)/capbot/gen/$1/CMakeLists.txt $(CAPBOT_FW_DEPS)
+	$(CAPBOT_CC) @$(CAPBOT_FW)/m4.flags \
+	  $$$$(grep -o -- '-DSVM_MAX_[A-Z_]*=[0-9]*' $$<) -DSVM_APP=$1 '-DSVM_APP_HEADER="$1_tables.h"' \
+	  -I$(BUILD)/capbot/gen/$1/src -I$(CAPBOT_FW) -T $(CAPBOT_FW)/mps2_an386.ld $(CAPBOT_FW_SOURCES) \
+	  $$(filter-out %/main.c,$$(wildcard $(BUILD)/capbot/gen/$1/src/*.c)) -o $$@
+endef
+
+$(eval $(call capbot_rules,energy_worker,$(EXAMPLE)))
+$(foreach n,$(filter-out energy_worker,$(CAPBOT_CORPUS)),\
+  $(eval $(call capbot_rules,$n,$(firstword $(wildcard tests/corpus/*/$n.yaml)))))

@@ -1,0 +1,21 @@
+# Learning (docs/learning.md): the learned-policy benchmark with its plot, and the learning
+# tests' emulator part (the C classifier and policy on the ATmega328P under simavr).
+
+.PHONY: bench-learning learning-simavr learning-size
+
+bench: bench-learning
+emulate: learning-simavr
+
+bench-learning:
+	$(PYTHON) benchmarks/learning.py
+
+learning-simavr:
+	$(PYTHON) -m pytest -q tests/learning/test_c_classifier.py tests/learning/test_c_policy.py
+
+# Flash and RAM of the learning code alone on the Kilobot's MCU (object file, -Os).
+learning-size:
+	@mkdir -p $(BUILD)/learning
+	avr-gcc -mmcu=atmega328p -Os -funsigned-char -funsigned-bitfields -fpack-struct -fshort-enums \
+	  -DF_CPU=8000000 -std=c99 -Wall -Wextra -Werror -pedantic -DSVM_MAX_EVENTS=32 -DSVM_MAX_SUPERVISORS=8 \
+	  -Iruntime_c -c runtime_c/swarmvm_learn.c -o $(BUILD)/learning/swarmvm_learn.o
+	avr-size -A $(BUILD)/learning/swarmvm_learn.o

@@ -1,0 +1,259 @@
+/*
+ * swarmvm C VM core: runs compiled supervisors by interpreting the portable table image
+ * (docs/image-format.md) with the execution semantics of docs/semantics.md.
+ *
+ * C99, no heap, no stdio, no floating point. The image is never copied: the VM keeps a
+ * pointer to it and a few section offsets, so its RAM is the current states, the previous
+ * check values (edge mode), the generator state, those offsets and the hooks (46 bytes for
+ * the Kilobot example energy_worker). The image may sit in flash: on AVR, svm_load_P() takes
+ * a PROGMEM image and every table read goes through pgm_read_byte; svm_load() takes an image
+ * in RAM, svm_load_E() one in EEPROM (loaded at run time). Elsewhere all are plain reads.
+ *
+ * Compile-time limits (set by the build, e.g. -DSVM_MAX_EVENTS=10):
+ *   SVM_MAX_EVENTS        largest E an image may have            (default 64)
+ *   SVM_MAX_SUPERVISORS   largest N an image may have            (default 16)
+ *   SVM_MAX_STATES        most states of all supervisors; 256 or
+ *                         less stores a state in one byte        (default 65535)
+ *   SVM_MASK_EXACT        1: accept only images whose masks are exactly SVM_MASK_BYTES wide
+ *                         (E in the same block of 8 as SVM_MAX_EVENTS); the step then has
+ *                         one, unrolled code path: smaller and faster (default 0)
+ *   SVM_IMAGE_SOURCES     AVR only: where images may live: SVM_FLASH_OR_RAM (default),
+ *                         SVM_FLASH_ONLY (svm_load_P only; faster, smaller), SVM_RAM_ONLY,
+ *                         or SVM_ANY_SOURCE (also EEPROM, svm_load_E)
+ */
+#ifndef SWARMVM_H
+#define SWARMVM_H
+
+#include <stdint.h>
+
+#ifndef SVM_MAX_EVENTS
+#define SVM_MAX_EVENTS 64
+#endif
+#ifndef SVM_MAX_SUPERVISORS
+#define SVM_MAX_SUPERVISORS 16
+#endif
+#ifndef SVM_MAX_STATES
+#define SVM_MAX_STATES 65535
+#endif
+#ifndef SVM_MASK_EXACT
+#define SVM_MASK_EXACT 0
+#endif
+#define SVM_FLASH_OR_RAM 0
+#define SVM_FLASH_ONLY 1
+#define SVM_RAM_ONLY 2
+#define SVM_ANY_SOURCE 3
+#ifndef SVM_IMAGE_SOURCES
+#define SVM_IMAGE_SOURCES SVM_FLASH_OR_RAM
+#endif
+
+#if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > 255
+#error "SVM_MAX_EVENTS must be 1..255 (the image format's limit)"
+#endif
+#if SVM_MAX_SUPERVISORS < 1 || SVM_MAX_SUPERVISORS > 255
+#error "SVM_MAX_SUPERVISORS must be 1..255 (the image format's limit)"
+#endif
+
+/* Bytes of an event mask able to hold SVM_MAX_EVENTS events. */
+#define SVM_MASK_BYTES ((SVM_MAX_EVENTS + 7) / 8)
+
+/* A supervisor's current state, as a global state number (index of its record). */
+#if SVM_MAX_STATES < 1 || SVM_MAX_STATES > 65535
+#error "SVM_MAX_STATES must be 1..65535 (the image format's limit)"
+#endif
+#if SVM_MAX_STATES <= 256
+typedef uint8_t svm_state_t;
+#else
+typedef uint16_t svm_state_t;
+#endif
+
+/* Where constant tables live, and how to read one byte of them. */
+#if defined(__AVR__)
+#include <avr/pgmspace.h>
+#define SVM_PROGMEM PROGMEM
+#define SVM_FLASH_BYTE(p) pgm_read_byte(p)
+#else
+#define SVM_PROGMEM
+#define SVM_FLASH_BYTE(p) (*(const uint8_t *)(p))
+#endif
+
+/* ---- result codes of svm_load and friends (0 = success) -------------------------------- */
+enum svm_result {
+    SVM_OK = 0,
+    SVM_ERR_LENGTH = 1,     /* shorter than 18 bytes or length field != given length */
+    SVM_ERR_MAGIC = 2,      /* not "SVMI" */
+    SVM_ERR_VERSION = 3,    /* format version this VM does not read */
+    SVM_ERR_CRC = 4,        /* checksum mismatch */
+    SVM_ERR_LAYOUT = 5,     /* header inconsistent, sections do not end at L-2, an index out of range */
+    SVM_ERR_LIMITS = 6,     /* more events/supervisors/states than this build's SVM_MAX_* */
+    SVM_ERR_NAMES = 7,      /* swap: a bound event's name is missing from the new image */
+    SVM_ERR_EVENT = 8,      /* unknown event index, or a check bound to a controllable event */
+    SVM_ERR_NO_BINDINGS = 9, /* svm_bind without a binding table (svm_set_bindings) */
+    SVM_ERR_SOURCE = 10     /* an image in memory this build does not read (SVM_IMAGE_SOURCES) */
+};
+
+/* Where an image lives (svm_validate's `source`). */
+#define SVM_SOURCE_RAM 0u
+#define SVM_SOURCE_FLASH 1u
+#define SVM_SOURCE_EEPROM 2u
+
+/* ---- options: one byte of run-time flags, so one binary runs every combination ---------- */
+#define SVM_INPUTS_LEVEL 0x00u      /* an event occurs while its check is true (default) */
+#define SVM_INPUTS_EDGE 0x01u       /* ... only when its check turned true */
+#define SVM_CONTROL_AFTER_INPUTS 0x00u  /* choose a controllable event every step (default) */
+#define SVM_CONTROL_IF_QUIET 0x02u  /* ... only when no uncontrollable event occurred */
+#define SVM_POLICY_UNIFORM 0x00u    /* xorshift32 pick among the enabled events (default) */
+#define SVM_POLICY_FIRST 0x04u      /* the enabled event of lowest rank (svm_set_priority) */
+#define SVM_POLICY_WEIGHTED 0x08u   /* Q15 product of transition probabilities */
+#define SVM_POLICY_LEARNED 0x0Cu    /* the chooser callback decides (svm_set_chooser) */
+#define SVM_POLICY_MASK 0x0Cu
+
+#define SVM_DEFAULT_SEED 1u
+
+struct svm_vm;
+
+/* Nadzoru-compatible callback shapes: an action, and a check returning nonzero when the
+ * uncontrollable event occurs. `data` is the pointer given at binding. */
+typedef void (*svm_action_fn)(void *data);
+typedef unsigned char (*svm_check_fn)(void *data);
+
+/* One runtime binding; an array of these (one per event) is supplied by the application. */
+typedef struct svm_binding {
+    svm_action_fn action;
+    svm_check_fn check;
+    void *data;
+} svm_binding_t;
+
+/* Compile-time dispatch: generated code supplies one function that calls the application's
+ * check (op SVM_OP_CHECK, returns nonzero when the event occurs) or action (SVM_OP_ACTION)
+ * of `event`, through a switch, so callbacks cost no RAM. */
+#define SVM_OP_CHECK 0u
+#define SVM_OP_ACTION 1u
+typedef uint8_t (*svm_dispatch_fn)(struct svm_vm *vm, uint8_t event, uint8_t op);
+
+/* Learned policy hook (SVM_POLICY_LEARNED): given the mask of enabled controllable events
+ * (svm_mask_bytes(vm) bytes, bit e%8 of byte e/8 for event e) and their count (>= 1),
+ * return the event to fire. A return value that is not enabled fires nothing this step. */
+typedef uint8_t (*svm_chooser_fn)(struct svm_vm *vm, const uint8_t *enabled, uint8_t count,
+                                  void *ctx);
+
+/* Called for each supervisor that cannot follow an occurring uncontrollable event. */
+typedef void (*svm_violation_fn)(struct svm_vm *vm, uint8_t event, uint8_t supervisor);
+
+/* The VM. Treat the fields as private; use the functions below. */
+typedef struct svm_vm {
+    const uint8_t *image;       /* the table image (flash or RAM), NULL before a load */
+    uint16_t states_at;         /* offsets of the image's sections */
+    uint16_t targets_at;
+    uint16_t probs_at;          /* 0 when the image has no probabilities */
+    uint16_t names_at;          /* 0 when the image has no names */
+    uint8_t num_events;
+    uint8_t num_supervisors;
+    uint8_t mask_bytes;
+    uint8_t width;              /* bytes of a target state number: 1 or 2 */
+    uint8_t in_flash;           /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
+                                   (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte */
+    uint8_t options;            /* SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_* */
+    uint16_t violations;        /* saturates at 65535 */
+    svm_state_t state[SVM_MAX_SUPERVISORS];   /* global state numbers */
+    uint8_t previous[SVM_MASK_BYTES];   /* check values of the previous step (edge mode) */
+    uint32_t rng;
+    uint32_t seed;
+    svm_binding_t *bindings;    /* optional runtime binding table, `bindings_cap` entries */
+    uint8_t bindings_cap;
+    svm_dispatch_fn dispatch;   /* optional compile-time dispatch */
+    svm_chooser_fn chooser;
+    void *chooser_ctx;
+    svm_violation_fn on_violation;
+    const uint8_t *priority;    /* policy `first`: events to rank first, highest first */
+    uint8_t priority_count;
+} svm_vm_t;
+
+/* ---- life cycle ------------------------------------------------------------------------- */
+
+/* Empty VM: no image, default options (level, after-inputs, uniform), seed 1, no callbacks. */
+void svm_init(svm_vm_t *vm);
+
+/* Validate `image` (`length` bytes, in RAM) and run it from its initial states. On a running
+ * VM this is the swap: it happens between two steps, implies a reset, and rebinds runtime
+ * bindings by event name when both images carry names. On error nothing changes. */
+int svm_load(svm_vm_t *vm, const uint8_t *image, uint16_t length);
+
+/* The same for an image in program memory (PROGMEM on AVR; identical to svm_load elsewhere). */
+int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length);
+
+/* The same for an image in EEPROM (AVR built with SVM_IMAGE_SOURCES = SVM_ANY_SOURCE;
+ * SVM_ERR_SOURCE otherwise). `image` is its EEPROM address, not 0 (a null pointer). */
+int svm_load_E(svm_vm_t *vm, const uint8_t *image, uint16_t length);
+
+/* Check an image without loading it (same checks and result codes as svm_load); `source` is
+ * SVM_SOURCE_RAM, _FLASH or _EEPROM. */
+int svm_validate(const uint8_t *image, uint16_t length, uint8_t source);
+
+/* Initial states, cleared check memory and violation counter, generator re-seeded. */
+void svm_reset(svm_vm_t *vm);
+
+/* Options take effect at the next step; the seed at the next reset. */
+void svm_set_options(svm_vm_t *vm, uint8_t options, uint32_t seed);
+
+/* ---- callbacks -------------------------------------------------------------------------- */
+
+/* Use `table` (capacity `cap` events, cleared here) for svm_bind. */
+void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap);
+
+/* Bind an action and/or a check (NULL leaves none) to an event index. */
+int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn check, void *data);
+
+/* Compile-time dispatch, used for every event without a runtime binding. */
+void svm_set_dispatch(svm_vm_t *vm, svm_dispatch_fn dispatch);
+
+void svm_set_chooser(svm_vm_t *vm, svm_chooser_fn chooser, void *ctx);
+
+/* Policy `first`: the `count` event indices of `events` (RAM, kept by the caller) rank first,
+ * in that order; the others follow by index. NULL / 0 restores plain index order. Indices
+ * refer to the loaded image: set the list again after a swap (svm_event_index helps). */
+void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count);
+void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook);
+
+/* ---- running ---------------------------------------------------------------------------- */
+
+/* One step. Returns the number of events fired; their actions ran in firing order. */
+uint8_t svm_step(svm_vm_t *vm);
+
+/* Fill `enabled` (svm_mask_bytes(vm) bytes) with the enabled controllable events; returns
+ * their count. */
+uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled);
+
+/* Q15 weight of a controllable event in the current states (policy `weighted`). */
+uint32_t svm_weight(const svm_vm_t *vm, uint8_t event);
+
+/* The generator (xorshift32, docs/semantics.md); learners may draw from it. */
+uint32_t svm_random(svm_vm_t *vm);
+
+/* ---- inspection ------------------------------------------------------------------------- */
+
+uint8_t svm_num_events(const svm_vm_t *vm);
+uint8_t svm_num_supervisors(const svm_vm_t *vm);
+uint8_t svm_mask_bytes(const svm_vm_t *vm);
+uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor);
+uint16_t svm_violations(const svm_vm_t *vm);
+uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event);
+uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event);
+
+/* Index of the event named `name` ("x" or "EV_x"), or -1 (unknown, or image without names). */
+int svm_event_index(const svm_vm_t *vm, const char *name);
+
+/* Byte `at` of the loaded image, wherever it lives (flash, RAM, EEPROM): for code that reads
+ * the image format itself (docs/image-format.md), e.g. a learner. */
+uint8_t svm_image_byte(const svm_vm_t *vm, uint16_t at);
+
+/* Whether the image carries event names (a name may be empty: Nadzoru's event "EV_"). */
+uint8_t svm_has_names(const svm_vm_t *vm);
+
+/* Copy the event's name without "EV_" into `buf` (NUL-terminated, cut to cap-1 chars);
+ * returns its full length (0 also when the image has no names). */
+uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap);
+
+/* Index of the `n`-th set bit (n from 0) of an event mask of `bytes` bytes; 255 if none. */
+uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n);
+
+#endif /* SWARMVM_H */

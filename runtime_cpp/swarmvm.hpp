@@ -1,0 +1,758 @@
+// swarmvm C++ VM: evolves compiled supervisors from a swarmvm table image.
+//
+// Header only, C++17, standard library only. It implements docs/semantics.md exactly and is
+// checked trace for trace against the Python reference (runtime_py/swarmvm_vm.py), whose
+// names it mirrors: Image::parse, BasicVM::step, XorShift32, replay, format_trace_line, SCT.
+// The tables always come from a table image (docs/image-format.md): compiled in as a byte
+// array or read from a .svm file, both go through Image::parse and its checks, so "compiled
+// in" and "loaded" are one code path.
+#ifndef SWARMVM_HPP
+#define SWARMVM_HPP
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace swarmvm {
+
+constexpr std::uint8_t kFormatVersion = 1;
+constexpr std::size_t kHeaderSize = 16;
+constexpr std::uint8_t kFlagNames = 1;
+constexpr std::uint8_t kFlagProbs = 2;
+constexpr std::uint32_t kQ15One = 32768;
+constexpr std::uint32_t kZeroSeed = 0x9E3779B9u;
+
+// CRC-16/MCRF4XX (reflected polynomial 0x8408, initial 0xFFFF, no final xor): what the
+// Kilobot's avr-libc computes with _crc_ccitt_update, so every runtime checks the same sum.
+inline std::uint16_t crc16(const std::uint8_t* data, std::size_t size, std::uint16_t crc = 0xFFFF) {
+    for (std::size_t i = 0; i < size; ++i) {
+        crc = static_cast<std::uint16_t>(crc ^ data[i]);
+        for (int bit = 0; bit < 8; ++bit) {
+            crc = (crc & 1u) ? static_cast<std::uint16_t>((crc >> 1) ^ 0x8408u) : static_cast<std::uint16_t>(crc >> 1);
+        }
+    }
+    return crc;
+}
+
+// A table image that cannot be run: wrong magic or version, bad checksum, truncated.
+class ImageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// A callback registered under a name the supervisor does not have (never mapped to event 0).
+class UnknownEvent : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// A set of events (E <= 255), bit e for event e. Fixed size so that the per-step mask
+// operations are a few word operations the compiler unrolls.
+class Mask {
+public:
+    static constexpr unsigned kWords = 4;
+
+    bool test(unsigned e) const { return (words_[e >> 6] >> (e & 63u)) & 1u; }
+    void set(unsigned e) { words_[e >> 6] |= std::uint64_t{1} << (e & 63u); }
+    bool any() const { return (words_[0] | words_[1] | words_[2] | words_[3]) != 0; }
+    Mask& operator&=(const Mask& other) {
+        for (unsigned i = 0; i < kWords; ++i) words_[i] &= other.words_[i];
+        return *this;
+    }
+    Mask& operator|=(const Mask& other) {
+        for (unsigned i = 0; i < kWords; ++i) words_[i] |= other.words_[i];
+        return *this;
+    }
+    // The events of `universe` that are not in this set.
+    Mask complement_in(const Mask& universe) const {
+        Mask out;
+        for (unsigned i = 0; i < kWords; ++i) out.words_[i] = universe.words_[i] & ~words_[i];
+        return out;
+    }
+    // Number of events below e in this set: the rank of e's successor in a state's targets.
+    unsigned count_below(unsigned e) const {
+        unsigned count = 0;
+        for (unsigned i = 0; i < (e >> 6); ++i) count += popcount(words_[i]);
+        const std::uint64_t low = (std::uint64_t{1} << (e & 63u)) - 1u;
+        return count + popcount(words_[e >> 6] & low);
+    }
+    // Calls f(e) for every event in the set, lowest first (canonical event order).
+    template <class F>
+    void for_each(F&& f) const {
+        for (unsigned i = 0; i < kWords; ++i) {
+            std::uint64_t word = words_[i];
+            while (word != 0) {
+                f(i * 64u + lowest_bit(word));
+                word &= word - 1u;
+            }
+        }
+    }
+    // Reads `size` little-endian bytes, bit e%8 of byte e/8 standing for event e.
+    static Mask from_bytes(const std::uint8_t* data, std::size_t size) {
+        Mask out;
+        for (std::size_t i = 0; i < size; ++i) {
+            out.words_[i >> 3] |= std::uint64_t{data[i]} << ((i & 7u) * 8u);
+        }
+        return out;
+    }
+    static Mask first(unsigned count) {
+        Mask out;
+        for (unsigned e = 0; e < count; ++e) out.set(e);
+        return out;
+    }
+    friend Mask operator&(Mask a, const Mask& b) { return a &= b; }
+    friend bool operator==(const Mask& a, const Mask& b) { return a.words_ == b.words_; }
+
+private:
+    // Branch-free bit count, inlined (GCC's builtin becomes a libgcc call without -mpopcnt).
+    static unsigned popcount(std::uint64_t x) {
+        x = x - ((x >> 1) & 0x5555555555555555u);
+        x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+        x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0Fu;
+        return static_cast<unsigned>((x * 0x0101010101010101u) >> 56);
+    }
+    static unsigned lowest_bit(std::uint64_t x) {
+#if defined(__GNUC__) || defined(__clang__)
+        return static_cast<unsigned>(__builtin_ctzll(x));
+#else
+        unsigned n = 0;
+        for (; (x & 1u) == 0; x >>= 1) ++n;
+        return n;
+#endif
+    }
+
+    std::array<std::uint64_t, kWords> words_{};
+};
+
+// A parsed table image: the canonical tables every runtime interprets. Events are numbered
+// 0..E-1 in canonical (name) order; targets[state_first[g] + rank] is the successor of global
+// state g on the event whose bit is the rank-th set bit of state_defined[g].
+struct Image {
+    std::vector<std::uint8_t> raw;
+    unsigned num_events = 0;
+    unsigned num_supervisors = 0;
+    Mask controllable;
+    Mask public_events;
+    std::vector<Mask> sup_alphabet;
+    std::vector<std::uint16_t> sup_first_state, sup_num_states, sup_initial;
+    std::vector<Mask> state_defined;
+    std::vector<std::uint16_t> state_first;
+    std::vector<std::uint16_t> targets;
+    std::vector<std::uint16_t> probs;   // empty without the PROBS section
+    std::vector<std::string> names;     // empty without the NAMES section
+
+    bool has_probs() const { return !probs.empty(); }
+    bool has_names() const { return !names.empty(); }
+
+    // Checks and decodes an image; throws ImageError naming the first defect.
+    static Image parse(const std::uint8_t* data, std::size_t size);
+
+    // Reads a .svm file and parses it.
+    static Image load(const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw ImageError("cannot read table image " + path);
+        std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        return parse(bytes.data(), bytes.size());
+    }
+
+    // "EV_<name>" when the image carries names, else "EV_<index>".
+    std::string event_name(unsigned event) const {
+        return "EV_" + (has_names() ? names[event] : std::to_string(event));
+    }
+
+    // Index of an event given as "EV_x" or "x"; UnknownEvent (with the name) otherwise.
+    unsigned event_index(const std::string& name) const {
+        if (!has_names()) throw UnknownEvent("this image carries no event names: bind " + name + " by index");
+        const std::string bare = name.compare(0, 3, "EV_") == 0 ? name.substr(3) : name;
+        for (unsigned e = 0; e < num_events; ++e) {
+            if (names[e] == bare) return e;
+        }
+        throw UnknownEvent("no event named '" + name + "' in this supervisor");
+    }
+};
+
+namespace detail {
+
+// Bounds-checked little-endian reader over the image bytes: a malformed image is refused
+// with ImageError, never read past its end.
+class Reader {
+public:
+    Reader(const std::uint8_t* data, std::size_t end) : data_(data), end_(end) {}
+    std::size_t pos() const { return pos_; }
+    const std::uint8_t* take(std::size_t count) {
+        if (count > end_ - pos_) throw ImageError("image truncated: a section runs past the checksum");
+        const std::uint8_t* at = data_ + pos_;
+        pos_ += count;
+        return at;
+    }
+    std::uint8_t u8() { return *take(1); }
+    std::uint16_t u16() {
+        const std::uint8_t* at = take(2);
+        return static_cast<std::uint16_t>(at[0] | (at[1] << 8));
+    }
+    Mask mask(std::size_t bytes) { return Mask::from_bytes(take(bytes), bytes); }
+    void seek(std::size_t pos) { pos_ = pos; }
+
+private:
+    const std::uint8_t* data_;
+    std::size_t end_;
+    std::size_t pos_ = 0;
+};
+
+inline std::string hex4(unsigned value) {
+    static const char digits[] = "0123456789abcdef";
+    std::string out = "0x0000";
+    for (int i = 0; i < 4; ++i) out[5 - i] = digits[(value >> (4 * i)) & 15u];
+    return out;
+}
+
+}  // namespace detail
+
+inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
+    if (size < kHeaderSize + 2) {
+        throw ImageError("image truncated: " + std::to_string(size) + " bytes, the header alone needs " +
+                         std::to_string(kHeaderSize + 2));
+    }
+    if (data[0] != 'S' || data[1] != 'V' || data[2] != 'M' || data[3] != 'I') {
+        throw ImageError("not a swarmvm table image (bad magic, expected SVMI)");
+    }
+    if (data[4] != kFormatVersion) {
+        throw ImageError("image format version " + std::to_string(data[4]) + ", this VM reads version " +
+                         std::to_string(kFormatVersion));
+    }
+    const std::uint8_t flags = data[5];
+    const unsigned n_events = data[6];
+    const unsigned n_sups = data[7];
+    const unsigned n_states = static_cast<unsigned>(data[8] | (data[9] << 8));
+    const unsigned n_trans = static_cast<unsigned>(data[10] | (data[11] << 8));
+    const unsigned width = data[12];
+    const unsigned mask_bytes = data[13];
+    const std::size_t length = static_cast<std::size_t>(data[14] | (data[15] << 8));
+    if (length != size) {
+        throw ImageError("image length field says " + std::to_string(length) + " bytes, got " + std::to_string(size));
+    }
+    const unsigned stored = static_cast<unsigned>(data[length - 2] | (data[length - 1] << 8));
+    const unsigned computed = crc16(data, length - 2);
+    if (stored != computed) {
+        throw ImageError("image checksum mismatch (stored " + detail::hex4(stored) + ", computed " +
+                         detail::hex4(computed) + ")");
+    }
+    if ((width != 1 && width != 2) || mask_bytes != (n_events + 7) / 8 || n_events == 0 || n_sups == 0) {
+        throw ImageError("image header inconsistent (events " + std::to_string(n_events) + ", mask bytes " +
+                         std::to_string(mask_bytes) + ", state width " + std::to_string(width) + ")");
+    }
+    Image image;
+    image.raw.assign(data, data + size);
+    image.num_events = n_events;
+    image.num_supervisors = n_sups;
+    detail::Reader in(data, length - 2);
+    in.seek(kHeaderSize);
+    image.controllable = in.mask(mask_bytes);
+    image.public_events = in.mask(mask_bytes);
+    for (unsigned s = 0; s < n_sups; ++s) {
+        image.sup_alphabet.push_back(in.mask(mask_bytes));
+        image.sup_first_state.push_back(in.u16());
+        image.sup_num_states.push_back(in.u16());
+        image.sup_initial.push_back(in.u16());
+    }
+    for (unsigned g = 0; g < n_states; ++g) {
+        image.state_defined.push_back(in.mask(mask_bytes));
+        image.state_first.push_back(in.u16());
+    }
+    for (unsigned t = 0; t < n_trans; ++t) {
+        image.targets.push_back(width == 1 ? in.u8() : in.u16());
+    }
+    if (flags & kFlagProbs) {
+        for (unsigned t = 0; t < n_trans; ++t) image.probs.push_back(in.u16());
+    }
+    if (flags & kFlagNames) {
+        for (unsigned e = 0; e < n_events; ++e) {
+            const std::uint8_t len = in.u8();
+            const std::uint8_t* at = in.take(len);
+            image.names.emplace_back(reinterpret_cast<const char*>(at), len);
+        }
+    }
+    if (in.pos() != length - 2) {
+        throw ImageError("image sections end at byte " + std::to_string(in.pos()) + ", the checksum is at byte " +
+                         std::to_string(length - 2));
+    }
+    // Cross-references: the step indexes with them, so an inconsistent image is refused here.
+    for (unsigned s = 0; s < n_sups; ++s) {
+        const unsigned first = image.sup_first_state[s], count = image.sup_num_states[s];
+        if (count == 0 || first + count > n_states || image.sup_initial[s] >= count) {
+            throw ImageError("image supervisor " + std::to_string(s) + " has states outside the state section");
+        }
+        for (unsigned g = first; g < first + count; ++g) {
+            unsigned successors = 0;
+            image.state_defined[g].for_each([&](unsigned) { ++successors; });
+            if (image.state_first[g] + successors > n_trans) {
+                throw ImageError("image state " + std::to_string(g) + " has successors outside the target section");
+            }
+            for (unsigned t = image.state_first[g]; t < image.state_first[g] + successors; ++t) {
+                if (image.targets[t] >= count) {
+                    throw ImageError("image transition " + std::to_string(t) + " leads outside its supervisor");
+                }
+            }
+        }
+    }
+    return image;
+}
+
+// Options of docs/semantics.md. The learned policy is not implemented by this runtime:
+// parse_policy refuses it.
+enum class Inputs { level, edge };
+enum class Control { after_inputs, if_quiet };
+enum class Policy { uniform, first, weighted };
+
+struct Options {
+    Inputs inputs = Inputs::level;
+    Control control = Control::after_inputs;
+    Policy policy = Policy::uniform;
+    std::uint32_t seed = 1;
+    std::vector<std::string> priority;   // policy first: events ranked first, highest first
+};
+
+inline Inputs parse_inputs(const std::string& text) {
+    if (text == "level") return Inputs::level;
+    if (text == "edge") return Inputs::edge;
+    throw std::invalid_argument("inputs must be level or edge, not '" + text + "'");
+}
+
+inline Control parse_control(const std::string& text) {
+    if (text == "after-inputs") return Control::after_inputs;
+    if (text == "if-quiet") return Control::if_quiet;
+    throw std::invalid_argument("control must be after-inputs or if-quiet, not '" + text + "'");
+}
+
+inline Policy parse_policy(const std::string& text) {
+    if (text == "uniform") return Policy::uniform;
+    if (text == "first") return Policy::first;
+    if (text == "weighted") return Policy::weighted;
+    if (text == "learned") throw std::invalid_argument("policy 'learned' is not implemented by the C++ runtime");
+    throw std::invalid_argument("policy must be uniform, first or weighted, not '" + text + "'");
+}
+
+// The one pseudo-random generator of every runtime (Marsaglia's xorshift32, 13/17/5).
+// Seed 0, a fixed point of xorshift, is replaced by 0x9E3779B9.
+class XorShift32 {
+public:
+    explicit XorShift32(std::uint32_t seed = 1) { this->seed(seed); }
+    void seed(std::uint32_t seed) { state_ = seed != 0 ? seed : kZeroSeed; }
+    std::uint32_t next() {
+        std::uint32_t x = state_;
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        state_ = x;
+        return x;
+    }
+
+private:
+    std::uint32_t state_ = 1;
+};
+
+// An index in [0, n) for n < 65536 from a 32-bit draw: the top 16 bits scaled by n.
+inline unsigned scale_below(std::uint32_t draw, unsigned n) {
+    return static_cast<unsigned>(((draw >> 16) * n) >> 16);
+}
+
+// A member function as a VM callback: vm.set_action("EV_x", member(this, &C::OnX)) or
+// vm.set_check("EV_y", member(this, &C::CheckY)), the method taking the event's data pointer.
+template <class C, class R>
+auto member(C* object, R (C::*method)(void*)) {
+    return [object, method](void* data) { return (object->*method)(data); };
+}
+
+// The virtual machine: current states, inputs, generator, callbacks; step() evolves it.
+// Rng is any type with seed(uint32_t) and uint32_t next(); the default is the specified
+// xorshift32 (swarmvm_argos.hpp offers ARGoS's CRNG instead).
+template <class Rng = XorShift32>
+class BasicVM {
+public:
+    using Action = std::function<void(void*)>;
+    using Check = std::function<bool(void*)>;
+    using ViolationHook = std::function<void(unsigned event, unsigned supervisor)>;
+
+    explicit BasicVM(Image image, Options options = Options(), Rng rng = Rng())
+        : options_(std::move(options)), rng_(std::move(rng)) {
+        Derived derived = derive(image, options_);
+        image_ = std::move(image);
+        derived_ = std::move(derived);
+        actions_.assign(image_.num_events, Action());
+        checks_.assign(image_.num_events, Check());
+        data_.assign(image_.num_events, nullptr);
+        reset();
+    }
+
+    // Swaps in a new image between two steps; states restart from its initial states.
+    // Callbacks bound by name are rebound by name; a name the new image lacks throws
+    // UnknownEvent before anything changes, so the VM keeps running the logic it had.
+    void load(Image image) {
+        std::vector<Action> actions(image.num_events);
+        std::vector<Check> checks(image.num_events);
+        std::vector<void*> data(image.num_events, nullptr);
+        for (unsigned e = 0; e < image_.num_events; ++e) {
+            if (!actions_[e] && !checks_[e] && data_[e] == nullptr) continue;
+            if (image_.has_names() && !image.has_names()) {
+                throw UnknownEvent("the new image carries no event names to rebind callbacks by");
+            }
+            const unsigned to = image_.has_names() ? image.event_index(image_.event_name(e)) : e;
+            if (to >= image.num_events) throw UnknownEvent("event index " + std::to_string(e) + " is not in the new image");
+            actions[to] = actions_[e];
+            checks[to] = checks_[e];
+            data[to] = data_[e];
+        }
+        Derived derived = derive(image, options_);
+        image_ = std::move(image);
+        derived_ = std::move(derived);
+        actions_ = std::move(actions);
+        checks_ = std::move(checks);
+        data_ = std::move(data);
+        reset();
+    }
+
+    // Back to the initial states, cleared inputs and counters, generator re-seeded.
+    void reset() {
+        states_.assign(image_.sup_initial.begin(), image_.sup_initial.end());
+        previous_ = Mask();
+        violations_ = 0;
+        rng_.seed(options_.seed);
+    }
+
+    // Binds an action and/or a check to an event given by name ("EV_x" or "x") or index.
+    // A name the supervisor does not have throws UnknownEvent, never binds event 0.
+    void bind(const std::string& event, Action action, Check check = Check(), void* data = nullptr) {
+        bind(image_.event_index(event), std::move(action), std::move(check), data);
+    }
+    void bind(unsigned event, Action action, Check check = Check(), void* data = nullptr) {
+        require(event);
+        if (check && image_.controllable.test(event)) {
+            throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
+        }
+        if (action) actions_[event] = std::move(action);
+        if (check) checks_[event] = std::move(check);
+        data_[event] = data;
+    }
+    void set_action(const std::string& event, Action action) { set_action(image_.event_index(event), std::move(action)); }
+    void set_action(unsigned event, Action action) {
+        require(event);
+        actions_[event] = std::move(action);
+    }
+    void set_check(const std::string& event, Check check) { set_check(image_.event_index(event), std::move(check)); }
+    void set_check(unsigned event, Check check) {
+        require(event);
+        if (image_.controllable.test(event)) {
+            throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
+        }
+        checks_[event] = std::move(check);
+    }
+    void on_violation(ViolationHook hook) { on_violation_ = std::move(hook); }
+
+    // Names of uncontrollable events with no check (they can never occur).
+    std::vector<std::string> unbound_checks() const {
+        std::vector<std::string> out;
+        for (unsigned e : derived_.input_order) {
+            if (!checks_[e]) out.push_back(image_.event_name(e));
+        }
+        return out;
+    }
+
+    // Controllable events enabled by every supervisor, as a mask.
+    Mask enabled_mask() const {
+        Mask mask = image_.controllable;
+        for (unsigned s = 0; s < image_.num_supervisors; ++s) {
+            mask &= derived_.allowed[image_.sup_first_state[s] + states_[s]];
+        }
+        return mask;
+    }
+
+    // Controllable events enabled by every supervisor, in canonical order.
+    std::vector<unsigned> enabled() const {
+        std::vector<unsigned> out;
+        enabled_mask().for_each([&](unsigned e) { out.push_back(e); });
+        return out;
+    }
+
+    // One VM step (docs/semantics.md); returns the events that fired, in the order applied.
+    const std::vector<unsigned>& step() {
+        fired_.clear();
+        Mask current;
+        for (unsigned e : derived_.input_order) {
+            const Check& check = checks_[e];
+            if (check && check(data_[e])) current.set(e);
+        }
+        Mask occurred = current;
+        if (options_.inputs == Inputs::edge) occurred = previous_.complement_in(current);
+        previous_ = current;
+        for (unsigned e : derived_.input_order) {
+            if (occurred.test(e)) {
+                fired_.push_back(e);
+                apply(e);
+            }
+        }
+        if (!fired_.empty() && options_.control == Control::if_quiet) return fired_;
+        const Mask mask = enabled_mask();
+        if (!mask.any()) return fired_;
+        const unsigned choice = select(mask);
+        fired_.push_back(choice);
+        apply(choice);
+        return fired_;
+    }
+
+    const Image& image() const { return image_; }
+    const Options& options() const { return options_; }
+    const std::vector<std::uint16_t>& states() const { return states_; }
+    std::uint32_t violations() const { return violations_; }
+    Rng& rng() { return rng_; }
+
+private:
+    // Lookup structures derived from an image (and the priority option) once, at load.
+    struct Derived {
+        std::vector<unsigned> input_order;              // public uncontrollable, then private
+        std::vector<Mask> allowed;                      // per global state: defined | not in alphabet
+        std::vector<std::vector<unsigned>> event_sups;  // per event: supervisors holding it
+        std::vector<unsigned> rank;                     // per event: rank for policy first
+    };
+
+    static Derived derive(const Image& image, const Options& options) {
+        Derived d;
+        const Mask all = Mask::first(image.num_events);
+        const Mask uncontrollable = image.controllable.complement_in(all);
+        (uncontrollable & image.public_events).for_each([&](unsigned e) { d.input_order.push_back(e); });
+        image.public_events.complement_in(uncontrollable).for_each([&](unsigned e) { d.input_order.push_back(e); });
+        d.allowed.resize(image.state_defined.size());
+        for (unsigned s = 0; s < image.num_supervisors; ++s) {
+            Mask outside = image.sup_alphabet[s].complement_in(all);
+            for (unsigned q = 0; q < image.sup_num_states[s]; ++q) {
+                const unsigned g = image.sup_first_state[s] + q;
+                d.allowed[g] = image.state_defined[g];
+                d.allowed[g] |= outside;
+            }
+        }
+        d.event_sups.resize(image.num_events);
+        for (unsigned s = 0; s < image.num_supervisors; ++s) {
+            image.sup_alphabet[s].for_each([&](unsigned e) {
+                if (e < image.num_events) d.event_sups[e].push_back(s);
+            });
+        }
+        std::vector<unsigned> listed;
+        for (const std::string& name : options.priority) listed.push_back(image.event_index(name));
+        d.rank.resize(image.num_events);
+        for (unsigned e = 0; e < image.num_events; ++e) {
+            d.rank[e] = static_cast<unsigned>(listed.size()) + e;
+            for (unsigned i = 0; i < listed.size(); ++i) {
+                if (listed[i] == e) {
+                    d.rank[e] = i;
+                    break;
+                }
+            }
+        }
+        return d;
+    }
+
+    void require(unsigned event) const {
+        if (event >= image_.num_events) {
+            throw UnknownEvent("event index " + std::to_string(event) + " out of range (0.." +
+                               std::to_string(image_.num_events - 1) + ")");
+        }
+    }
+
+    // Position in the target section of supervisor s's successor on e, or -1 if undefined.
+    long successor_slot(unsigned s, unsigned e) const {
+        const unsigned g = image_.sup_first_state[s] + states_[s];
+        const Mask& defined = image_.state_defined[g];
+        if (!defined.test(e)) return -1;
+        return static_cast<long>(image_.state_first[g] + defined.count_below(e));
+    }
+
+    void apply(unsigned event) {
+        for (unsigned s : derived_.event_sups[event]) {
+            const long slot = successor_slot(s, event);
+            if (slot < 0) {
+                ++violations_;
+                if (on_violation_) on_violation_(event, s);
+            } else {
+                states_[s] = image_.targets[static_cast<std::size_t>(slot)];
+            }
+        }
+        if (actions_[event]) actions_[event](data_[event]);
+    }
+
+    std::uint32_t weight(unsigned event) const {
+        std::uint32_t w = kQ15One;
+        if (!image_.has_probs()) return w;
+        for (unsigned s : derived_.event_sups[event]) {
+            w = (w * image_.probs[static_cast<std::size_t>(successor_slot(s, event))]) >> 15;
+        }
+        return w;
+    }
+
+    unsigned select(const Mask& mask) {
+        std::array<unsigned, 256> en;
+        unsigned n = 0;
+        mask.for_each([&](unsigned e) { en[n++] = e; });
+        if (options_.policy == Policy::first) {
+            unsigned best = en[0];
+            for (unsigned i = 1; i < n; ++i) {
+                if (derived_.rank[en[i]] < derived_.rank[best]) best = en[i];
+            }
+            return best;
+        }
+        if (n == 1) return en[0];
+        if (options_.policy == Policy::uniform) return en[scale_below(rng_.next(), n)];
+        std::array<std::uint32_t, 256> w;
+        std::uint32_t total = 0;
+        for (unsigned i = 0; i < n; ++i) {
+            w[i] = weight(en[i]);
+            total += w[i];
+        }
+        if (total == 0) return en[scale_below(rng_.next(), n)];
+        std::uint32_t pick = rng_.next() % total;
+        for (unsigned i = 0; i < n; ++i) {
+            if (pick < w[i]) return en[i];
+            pick -= w[i];
+        }
+        throw std::logic_error("unreachable: pick below total");
+    }
+
+    Options options_;
+    Rng rng_;
+    Image image_;
+    Derived derived_;
+    std::vector<Action> actions_;
+    std::vector<Check> checks_;
+    std::vector<void*> data_;
+    ViolationHook on_violation_;
+    std::vector<std::uint16_t> states_;
+    Mask previous_;
+    std::uint32_t violations_ = 0;
+    std::vector<unsigned> fired_;
+};
+
+using VM = BasicVM<XorShift32>;
+
+// One line of the canonical trace (docs/conformance.md): step, events, states, violations.
+inline std::string format_trace_line(unsigned step, const std::vector<std::string>& names,
+                                     const std::vector<std::uint16_t>& states, std::uint32_t violations) {
+    std::string line = std::to_string(step) + " ";
+    if (names.empty()) line += "-";
+    for (std::size_t i = 0; i < names.size(); ++i) line += (i ? "," : "") + names[i];
+    line += " ";
+    for (std::size_t i = 0; i < states.size(); ++i) line += (i ? "," : "") + std::to_string(states[i]);
+    return line + " " + std::to_string(violations);
+}
+
+// Runs `vm` from reset on an event script (one mask of occurring events per step) and
+// returns the canonical trace lines: the conformance harness, as the Python replay().
+template <class Rng>
+std::vector<std::string> replay(BasicVM<Rng>& vm, const std::vector<Mask>& rows) {
+    const Mask* row = nullptr;
+    for (unsigned e = 0; e < vm.image().num_events; ++e) {
+        if (!vm.image().controllable.test(e)) {
+            vm.set_check(e, [&row, e](void*) { return row->test(e); });
+        }
+    }
+    vm.reset();
+    std::vector<std::string> lines;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        row = &rows[i];
+        std::vector<std::string> names;
+        for (unsigned e : vm.step()) names.push_back(vm.image().event_name(e));
+        lines.push_back(format_trace_line(static_cast<unsigned>(i + 1), names, vm.states(), vm.violations()));
+    }
+    for (unsigned e = 0; e < vm.image().num_events; ++e) {
+        if (!vm.image().controllable.test(e)) vm.set_check(e, nullptr);
+    }
+    return lines;
+}
+
+// The image file for a path given to SCT: a supervisor.yaml path means the supervisor.svm
+// that `swarmvm pack` / `swarmvm gen` write beside it (no YAML parser on the robot).
+inline std::string image_path_for(const std::string& path) {
+    const std::string yaml = ".yaml";
+    if (path.size() >= yaml.size() && path.compare(path.size() - yaml.size(), yaml.size(), yaml) == 0) {
+        return path.substr(0, path.size() - yaml.size()) + ".svm";
+    }
+    return path;
+}
+
+// Nadzoru 2's C++ API (the OpenSwarm ARGoS controllers' SCT) as a thin layer over BasicVM,
+// so a published controller switches to swarmvm without edits:
+//   sct->add_callback(this, "EV_x", &C::cb, NULL, NULL);      // controllable
+//   sct->add_callback(this, "EV_y", NULL, &C::check, NULL);   // uncontrollable
+//   sct->run_step();
+// Unlike the published VM, an unknown event name throws UnknownEvent (it never means event 0).
+template <class Rng = XorShift32>
+class BasicSCT {
+public:
+    explicit BasicSCT(const std::string& path, Options options = Options(), Rng rng = Rng())
+        : vm_(Image::load(image_path_for(path)), std::move(options), std::move(rng)) {
+        for (unsigned e = 0; e < vm_.image().num_events; ++e) events[vm_.image().event_name(e)] = e;
+    }
+    virtual ~BasicSCT() = default;
+
+    // Controllable event: an action, no check (the published controllers pass NULL).
+    template <class C>
+    void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), void* /*no check*/, void* data) {
+        vm_.bind(index(event), [p, clbk](void* d) { (p->*clbk)(d); }, typename BasicVM<Rng>::Check(), data);
+    }
+    // Uncontrollable event: a check (returning unsigned char or bool), no action.
+    template <class C, class R>
+    void add_callback(C* p, const std::string& event, void* /*no action*/, R (C::*ci)(void*), void* data) {
+        vm_.bind(index(event), typename BasicVM<Rng>::Action(), [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); },
+                 data);
+    }
+    // Uncontrollable event with both a check and an action (e.g. turn LEDs on when it occurs).
+    template <class C, class R>
+    void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), R (C::*ci)(void*), void* data) {
+        vm_.bind(index(event), [p, clbk](void* d) { (p->*clbk)(d); },
+                 [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); }, data);
+    }
+
+    // One VM step; public uncontrollable events are processed first, as SCTPub does.
+    virtual void run_step() { vm_.step(); }
+
+    // The current state of every supervisor, in supervisor order, joined by ','.
+    virtual std::string get_current_state_string() {
+        std::string out;
+        for (std::size_t s = 0; s < vm_.states().size(); ++s) out += (s ? "," : "") + std::to_string(vm_.states()[s]);
+        return out;
+    }
+
+    BasicVM<Rng>& vm() { return vm_; }
+
+    // Event name ("EV_x") -> index, as the published SCT's public map.
+    std::map<std::string, std::size_t> events;
+
+protected:
+    unsigned index(const std::string& event) const {
+        auto found = events.find(event);
+        if (found == events.end()) throw UnknownEvent("no event named '" + event + "' in this supervisor");
+        return static_cast<unsigned>(found->second);
+    }
+
+    BasicVM<Rng> vm_;
+};
+
+// The published SCTPub processes public events before private ones; in swarmvm that order
+// is the semantics of every step, so SCTPub is SCT under its published name.
+template <class Rng = XorShift32>
+class BasicSCTPub : public BasicSCT<Rng> {
+public:
+    using BasicSCT<Rng>::BasicSCT;
+};
+
+using SCT = BasicSCT<XorShift32>;
+using SCTPub = BasicSCTPub<XorShift32>;
+
+}  // namespace swarmvm
+
+#endif  // SWARMVM_HPP
