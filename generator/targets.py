@@ -6,8 +6,9 @@ names may use ``{name}``; ``keep`` marks user-edited files that are never overwr
 
 from dataclasses import dataclass, field
 
+from .kilobot import check_message_names
 from .render import context, render
-from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY
+from .runtime import FIRMWARE, RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY
 
 
 @dataclass(frozen=True)
@@ -17,6 +18,7 @@ class Target:
     copies: tuple = field(default=())    # (source path, output name)
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
+    check: object = None                 # check(compiled) raises InputError for a model the target cannot take
 
 
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in ("swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c"))
@@ -52,13 +54,15 @@ TARGETS = {
                    ("c/controller.c.j2", "{name}_controller.c", True)),
         copies=C_RUNTIME_COPIES),
     "kilobot": Target(
-        "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, Makefile, controller skeleton",
+        "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, new images streamed over messages, Makefile, controller skeleton",
         templates=(("c/tables.h.j2", "{name}_tables.h", False),
                    ("kilobot/tables.c.j2", "{name}_tables.c", False),
+                   ("kilobot/app.h.j2", "{name}_app.h", False),
                    ("kilobot/app.c.j2", "{name}_app.c", False),
                    ("kilobot/Makefile.j2", "Makefile", False),
                    ("kilobot/controller.c.j2", "{name}_controller.c", True)),
-        copies=C_RUNTIME_COPIES),
+        copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_stream.h", "swarmvm_stream.c")),
+        check=check_message_names),
     "capbot": Target(
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
         templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
@@ -67,22 +71,23 @@ TARGETS = {
                    ("c/tables.h.j2", "src/{name}_tables.h", False),
                    ("c/tables.c.j2", "src/{name}_tables.c", False),
                    ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=tuple((source, "src/" + output) for source, output in C_RUNTIME_COPIES)),
+        copies=tuple((source, "src/" + output) for source, output in C_RUNTIME_COPIES)
+        + tuple((FIRMWARE / "capbot" / n, "src/" + n) for n in ("logic_page.h", "logic_page.c"))),
 }
 
 
 def generate(compiled, target, **options):
     """{output name: (bytes, keep)} for one target: rendered templates, runtime copies, image."""
     spec = TARGETS[target]
+    if spec.check:
+        spec.check(compiled)
     values = context(compiled, target=target, **options)
-    files = {"%s.svm" % compiled.name: (compiled.image, False)}
-    for template, output, keep in spec.templates:
-        files[output.format(name=compiled.name)] = (render(template, values), keep)
-    for source, output in spec.copies:
-        files[output.format(name=compiled.name)] = (source.read_bytes(), False)
+    templates, copies = spec.templates, spec.copies
     if options.get("learned_checks"):
-        for template, output, keep in spec.learned_templates:
-            files[output.format(name=compiled.name)] = (render(template, values), keep)
-        for source, output in spec.learned_copies:
-            files[output.format(name=compiled.name)] = (source.read_bytes(), False)
+        templates, copies = templates + spec.learned_templates, copies + spec.learned_copies
+    files = {"%s.svm" % compiled.name: (compiled.image, False)}
+    for template, output, keep in templates:
+        files[output.format(name=compiled.name)] = (render(template, values), keep)
+    for source, output in copies:
+        files[output.format(name=compiled.name)] = (source.read_bytes(), False)
     return files

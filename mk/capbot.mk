@@ -1,41 +1,50 @@
 # CapBot (Cortex-M4F): generated Zephyr applications, built bare-metal for QEMU mps2-an386.
 #   make firmware   also builds $(BUILD)/capbot/energy_worker.elf and .bin (the bundled example)
-#   make emulate    also runs that image in QEMU and shows its trace
+#   make emulate    runs that image in QEMU and shows its trace (mk/emulate.mk)
 #   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU)
+# The control-logic flash page (firmware/capbot/logic_page.h, 4 KB at CAPBOT_LOGIC_PAGE):
+#   $(BUILD)/capbot/<name>-logic.hex   a model's image at the page address, Intel HEX, for
+#                                      nrfjprog --program / west flash --hex-file on the robot
+#   $(BUILD)/capbot/logic-vm.elf       the example's application built with the page limits
+#                                      (page_limits.flags): runs any model that fits them, e.g.
+#                                      qemu ... -kernel logic-vm.elf -device loader,file=X.svm,addr=0xF3000,force-raw=on
 # $(BUILD)/capbot/<name>.elf exists for the example and for every corpus supervisor (file stem):
 # `swarmvm gen --target capbot` into $(BUILD)/capbot/gen/<name>/, then the generated src/
 # minus the Zephyr main.c, plus firmware/capbot/ (start-up, linker script, CapBot API
 # stand-ins, a bare-metal main printing the trace through semihosting).
 
-.PHONY: emulate capbot-firmware capbot-emulate bench-m4
+.PHONY: capbot-firmware bench-m4
 
 CAPBOT_FW := firmware/capbot
 CAPBOT_CC ?= arm-none-eabi-gcc
 CAPBOT_OBJCOPY ?= arm-none-eabi-objcopy
 CAPBOT_QEMU ?= qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting-config enable=on,target=native
-CAPBOT_STEPS ?= 12
 CAPBOT_FW_SOURCES := $(addprefix $(CAPBOT_FW)/,startup.c app_qemu.c capbot_qemu.c)
+CAPBOT_LOGIC_PAGE := 0x000F3000
 CAPBOT_FW_DEPS := $(CAPBOT_FW_SOURCES) $(addprefix $(CAPBOT_FW)/,capbot.h m4.flags mps2_an386.ld)
-CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py)
+CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py $(CAPBOT_FW)/logic_page.[ch])
 CAPBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
 
 firmware: capbot-firmware
-emulate: capbot-emulate
 bench: bench-m4
 
-capbot-firmware: $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/energy_worker.bin
-
-capbot-emulate: $(BUILD)/capbot/energy_worker.elf
-	@echo "CapBot (QEMU mps2-an386), energy_worker, first $(CAPBOT_STEPS) steps:"
-	@timeout 60 $(CAPBOT_QEMU) -kernel $< > $(BUILD)/capbot/energy_worker.trace; \
-	  status=$$?; head -n $(CAPBOT_STEPS) $(BUILD)/capbot/energy_worker.trace; \
-	  [ $$status -eq 0 ] || { echo "QEMU exit status $$status"; exit 1; }
+capbot-firmware: $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/energy_worker.bin \
+  $(BUILD)/capbot/logic-vm.elf $(BUILD)/capbot/energy_worker-logic.hex
 
 bench-m4:
 	$(PYTHON) benchmarks/m4_cycles.py --json $(BUILD)/bench/m4_cycles.json
 
 $(BUILD)/capbot/%.bin: $(BUILD)/capbot/%.elf
 	$(CAPBOT_OBJCOPY) -O binary $< $@
+
+# The model's table image (written by `swarmvm gen` next to its application) moved to the page.
+$(BUILD)/capbot/%-logic.hex: $(BUILD)/capbot/gen/%/CMakeLists.txt
+	$(CAPBOT_OBJCOPY) -I binary -O ihex --change-addresses $(CAPBOT_LOGIC_PAGE) $(<D)/$*.svm $@
+
+$(BUILD)/capbot/logic-vm.elf: $(BUILD)/capbot/gen/energy_worker/CMakeLists.txt $(CAPBOT_FW_DEPS) $(CAPBOT_FW)/page_limits.flags
+	$(CAPBOT_CC) @$(CAPBOT_FW)/m4.flags @$(CAPBOT_FW)/page_limits.flags -DSVM_APP=energy_worker \
+	  '-DSVM_APP_HEADER="energy_worker_tables.h"' -I$(<D)/src -I$(CAPBOT_FW) -T $(CAPBOT_FW)/mps2_an386.ld \
+	  $(CAPBOT_FW_SOURCES) $(filter-out %/main.c,$(wildcard $(<D)/src/*.c)) -o $@
 
 # $(call capbot_rules,NAME,MODEL FILE): generate the application, link its bare-metal image.
 # The model's limit flags are the ones the generator wrote into its CMakeLists.txt.

@@ -1,6 +1,6 @@
 # Kilobot (ATmega328P, kilolib): generated applications linked with the official flags.
 #   make firmware   also builds $(BUILD)/kilobot/energy_worker.elf and .hex (the bundled example)
-#   make emulate    also runs that image in simavr with the emulator-only kilolib
+#   make emulate    runs that image in simavr (mk/emulate.mk)
 #   make bench      also runs benchmarks/avr_cycles.py (cycles per VM step in simavr)
 # $(BUILD)/kilobot/<name>.elf exists for the example and for every corpus supervisor (file
 # stem): `swarmvm gen --target kilobot` into $(BUILD)/kilobot/gen/<name>/, compiled with the
@@ -8,7 +8,7 @@
 # (declaration-only kilolib.h, emulator-only kilolib_emu.c). An image over 28,672 bytes of
 # flash fails the build.
 
-.PHONY: kilobot-firmware kilobot-emulate bench-avr
+.PHONY: kilobot-firmware bench-avr
 
 KILOBOT_FW := firmware/kilobot
 KILOBOT_CC ?= avr-gcc
@@ -19,14 +19,9 @@ KILOBOT_GEN_DEPS := $(wildcard templates/kilobot/*.j2 templates/c/*.j2 runtime_c
 KILOBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
 
 firmware: kilobot-firmware
-emulate: kilobot-emulate
 bench: bench-avr
 
 kilobot-firmware: $(BUILD)/kilobot/energy_worker.elf $(BUILD)/kilobot/energy_worker.hex
-
-kilobot-emulate: $(BUILD)/kilobot/energy_worker.elf
-	@echo "Kilobot (simavr atmega328p), energy_worker, emulator-only kilolib:"
-	@timeout 60 simavr -m atmega328p -f 8000000 $< 2>&1 | sed 's/\x1b\[[0-9;]*m//g; s/\.$$//' | head -n 12
 
 bench-avr:
 	$(PYTHON) benchmarks/avr_cycles.py --json $(BUILD)/bench/avr_cycles.json

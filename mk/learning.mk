@@ -1,16 +1,13 @@
-# Learning (docs/learning.md): the learned-policy benchmark with its plot, and the learning
-# tests' emulator part (the C classifier and policy on the ATmega328P under simavr).
+# Learning (docs/learning.md): the learned-policy benchmark with its plot, and the size of the
+# learning code on the Kilobot's MCU. Its emulator checks (C classifier and policy in simavr)
+# are tests: `make test` runs them (tests/learning/).
 
-.PHONY: bench-learning learning-simavr learning-size
+.PHONY: bench-learning learning-size
 
 bench: bench-learning
-emulate: learning-simavr
 
 bench-learning:
 	$(PYTHON) benchmarks/learning.py
-
-learning-simavr:
-	$(PYTHON) -m pytest -q tests/learning/test_c_classifier.py tests/learning/test_c_policy.py
 
 # Flash and RAM of the learning code alone on the Kilobot's MCU (object file, -Os).
 learning-size:

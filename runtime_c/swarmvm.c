@@ -12,6 +12,9 @@
 #define Q15_ONE 32768u
 #define SEED_FOR_ZERO 0x9E3779B9UL
 
+/* Inlining hint for the step's helpers (C99 `inline` on a static function). */
+#define SVM_INLINE inline
+
 /* ---- image access ------------------------------------------------------------------------
  * An image is read where it lives: `source` is SVM_SOURCE_RAM, _FLASH or _EEPROM. On AVR the
  * build chooses which sources it reads (SVM_IMAGE_SOURCES): SVM_FLASH_ONLY reads every byte
@@ -39,13 +42,28 @@ static uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
     return (uint16_t)(rd_raw(image, source, at) | ((uint16_t)rd_raw(image, source, (uint16_t)(at + 1u)) << 8));
 }
 
-#define RD(vm, at) rd_raw((vm)->image, (vm)->in_flash, (uint16_t)(at))
-#define RD16(vm, at) rd16_raw((vm)->image, (vm)->in_flash, (uint16_t)(at))
+#define RD(vm, at) rd_raw((vm)->image, (vm)->source, (uint16_t)(at))
+#define RD16(vm, at) rd16_raw((vm)->image, (vm)->source, (uint16_t)(at))
+
+/* Whether an image read from `source` is in AVR program memory, where pgm_read_word/dword
+ * read 2 or 4 bytes at once. */
+#if defined(__AVR__) && SVM_IMAGE_SOURCES == SVM_FLASH_ONLY
+#define IN_FLASH(source) ((void)(source), 1)
+#elif defined(__AVR__) && SVM_IMAGE_SOURCES != SVM_RAM_ONLY
+#define IN_FLASH(source) ((source) == SVM_SOURCE_FLASH)
+#else
+#define IN_FLASH(source) ((void)(source), 0)
+#endif
 
 /* The same through a pointer into the image, for the step's loops (no base + offset sums). */
 #define PEEK(source, p) READ((p), (source), 0)
-static uint16_t peek16(uint8_t source, const uint8_t *p)
+static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 {
+#if defined(__AVR__) && SVM_IMAGE_SOURCES != SVM_RAM_ONLY
+    if (IN_FLASH(source)) {
+        return pgm_read_word(p);
+    }
+#endif
     return (uint16_t)(PEEK(source, p) | ((uint16_t)PEEK(source, p + 1) << 8));
 }
 
@@ -59,25 +77,284 @@ static uint16_t peek16(uint8_t source, const uint8_t *p)
 /* vm->state[s] is the supervisor's *global* state number: its record is at
  * states_at + state * STATE_SIZE(m), found without reading the supervisor's first state. */
 
-/* Inlining hint for the step's helpers (C99 `inline` on a static function). */
-#define SVM_INLINE inline
 
 /* A loaded image's mask width, clamped to 1..SVM_MASK_BYTES for the compiler's sake (load has
  * checked it already), so that loops over it provably stay inside the VM's mask arrays. */
 #define MASK_WIDTH(m) ((uint8_t)((m) - 1u) < SVM_MASK_BYTES ? (uint8_t)(m) : (uint8_t)1u)
 
-static uint8_t popcount8(uint8_t x)
+/* Set bits of a byte. AVR shifts one bit per instruction, so there a table in flash (256 B,
+ * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic. */
+#if SVM_POPCOUNT_TABLE
+static const uint8_t ones_in[256] SVM_PROGMEM = {
+    0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5,
+    1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5, 2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6,
+    1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5, 2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6,
+    2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6, 3, 4, 4, 5, 4, 5, 5, 6, 4, 5, 5, 6, 5, 6, 6, 7,
+    1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5, 2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6,
+    2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6, 3, 4, 4, 5, 4, 5, 5, 6, 4, 5, 5, 6, 5, 6, 6, 7,
+    2, 3, 3, 4, 3, 4, 4, 5, 3, 4, 4, 5, 4, 5, 5, 6, 3, 4, 4, 5, 4, 5, 5, 6, 4, 5, 5, 6, 5, 6, 6, 7,
+    3, 4, 4, 5, 4, 5, 5, 6, 4, 5, 5, 6, 5, 6, 6, 7, 4, 5, 5, 6, 5, 6, 6, 7, 5, 6, 6, 7, 6, 7, 7, 8
+};
+
+static SVM_INLINE uint8_t popcount8(uint8_t x)
+{
+    return SVM_FLASH_BYTE(ones_in + x);
+}
+#else
+static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
     x = (uint8_t)(x - ((x >> 1) & 0x55u));
     x = (uint8_t)((x & 0x33u) + ((x >> 2) & 0x33u));
     return (uint8_t)((x + (x >> 4)) & 0x0Fu);
 }
+#endif
 
-/* Mask of the valid event bits of mask byte `i` (the last byte may be partly padding). */
-static uint8_t valid_bits(uint8_t num_events, uint8_t i)
+/* ---- event masks -----------------------------------------------------------------------------
+ * The step's set operations (poll, occurrence, enabled set, selection) work on whole event
+ * masks. When SVM_MASK_BYTES allows, a mask is a native integer (1, 2 or 3-4 bytes; up to 8 off
+ * AVR, where 64-bit operations are cheap), read from the image in one go (pgm_read_word/dword
+ * on AVR), so that and, or and not take a few instructions instead of byte loops. Wider builds
+ * keep a byte array (in a struct, so that it is assigned and passed as a value). Images whose
+ * masks are narrower than SVM_MASK_BYTES (builds without SVM_MASK_EXACT) are read
+ * zero-extended. A mask's events are visited in index order with a cursor, a byte at a time:
+ * zero bytes are skipped whole and no mask is shifted by a variable count, which AVR does one
+ * bit at a time. Transitions (apply, weight) test single bytes of the image's masks instead. */
+#if SVM_MASK_BYTES == 1
+typedef uint8_t mask_t;
+#elif SVM_MASK_BYTES == 2
+typedef uint16_t mask_t;
+#elif SVM_MASK_BYTES <= 4
+typedef uint32_t mask_t;
+#elif SVM_MASK_BYTES <= 8 && !defined(__AVR__)
+typedef uint64_t mask_t;
+#else
+#define MASK_ARRAY 1
+typedef struct mask {
+    uint8_t b[SVM_MASK_BYTES];
+} mask_t;
+#endif
+
+#ifndef MASK_ARRAY
+#define MASK_ARRAY 0
+
+/* A full-width mask at `p` in program memory (AVR), little-endian as the image stores it. */
+#if defined(__AVR__) && SVM_MASK_BYTES == 1
+#define FLASH_MASK(p) pgm_read_byte(p)
+#elif defined(__AVR__) && SVM_MASK_BYTES == 2
+#define FLASH_MASK(p) pgm_read_word(p)
+#elif defined(__AVR__) && SVM_MASK_BYTES == 3
+#define FLASH_MASK(p) (pgm_read_word(p) | ((uint32_t)pgm_read_byte((p) + 2) << 16))
+#elif defined(__AVR__)
+#define FLASH_MASK(p) pgm_read_dword(p)
+#else
+#define FLASH_MASK(p) 0u
+#endif
+
+/* The image's mask of `m` bytes at `p`. */
+static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
 {
-    uint8_t left = (uint8_t)(num_events - 8u * i);
-    return left >= 8u ? 0xFFu : (uint8_t)(0xFFu >> (8u - left));
+    mask_t mask = 0;
+    if (m == SVM_MASK_BYTES && IN_FLASH(source)) {
+        return (mask_t)FLASH_MASK(p);
+    }
+    for (p += m; m != 0u; m--) {
+        mask = (mask_t)((mask_t)(mask << 8) | PEEK(source, --p));
+    }
+    return mask;
+}
+
+/* A mask kept in RAM as SVM_MASK_BYTES bytes, and back (`m` bytes). */
+static SVM_INLINE mask_t mask_load(const uint8_t *bytes)
+{
+    mask_t mask = 0;
+    uint8_t i;
+    for (i = SVM_MASK_BYTES; i != 0u; i--) {
+        mask = (mask_t)((mask_t)(mask << 8) | bytes[i - 1u]);
+    }
+    return mask;
+}
+
+static SVM_INLINE void mask_store(uint8_t *bytes, mask_t mask, uint8_t m)
+{
+    for (; m != 0u; m--) {
+        *bytes++ = (uint8_t)mask;
+        mask = (mask_t)(mask >> 8);
+    }
+}
+
+static SVM_INLINE mask_t mask_and(mask_t a, mask_t b) { return (mask_t)(a & b); }
+static SVM_INLINE mask_t mask_and_not(mask_t a, mask_t b) { return (mask_t)(a & (mask_t)~b); }
+static SVM_INLINE mask_t mask_or_not(mask_t a, mask_t b) { return (mask_t)(a | (mask_t)~b); }
+static SVM_INLINE uint8_t mask_any(mask_t a) { return a != 0u; }
+
+/* Events 0 .. n-1 (n <= 8 * SVM_MASK_BYTES); MASK_LOW_MAX: all SVM_MAX_EVENTS, a constant. */
+static mask_t mask_low(uint8_t n)
+{
+    mask_t mask = 0;
+    for (; n >= 8u; n = (uint8_t)(n - 8u)) {
+        mask = (mask_t)((mask_t)(mask << 8) | 0xFFu);
+    }
+    for (; n != 0u; n--) {
+        mask = (mask_t)((mask_t)(mask << 1) | 1u);
+    }
+    return mask;
+}
+#define MASK_LOW_MAX ((mask_t)((((mask_t)1u << (SVM_MAX_EVENTS - 1)) << 1) - 1u))
+
+/* Cursor over a mask's events: `rest` holds the events not visited yet, shifted down by
+ * `base` (a multiple of 8). */
+typedef struct cursor {
+    mask_t rest;
+    uint8_t base;
+} cursor_t;
+
+static SVM_INLINE void cursor_start(cursor_t *c, mask_t mask)
+{
+    c->rest = mask;
+    c->base = 0;
+}
+
+static SVM_INLINE uint8_t cursor_any(const cursor_t *c) { return c->rest != 0u; }
+static SVM_INLINE uint8_t cursor_byte(const cursor_t *c) { return (uint8_t)c->rest; }
+
+/* Leave the current 8 events unvisited. */
+static SVM_INLINE void cursor_skip_byte(cursor_t *c)
+{
+    c->rest = (mask_t)(c->rest >> 8);
+    c->base = (uint8_t)(c->base + 8u);
+}
+
+/* Clear bit `bit` of the current byte. */
+static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
+
+#else /* MASK_ARRAY */
+
+static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
+{
+    mask_t mask;
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        mask.b[i] = i < m ? PEEK(source, p + i) : 0u;
+    }
+    return mask;
+}
+
+static SVM_INLINE mask_t mask_load(const uint8_t *bytes)
+{
+    mask_t mask;
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        mask.b[i] = bytes[i];
+    }
+    return mask;
+}
+
+static SVM_INLINE void mask_store(uint8_t *bytes, mask_t mask, uint8_t m)
+{
+    uint8_t i;
+    for (i = 0; i < m; i++) {
+        bytes[i] = mask.b[i];
+    }
+}
+
+static SVM_INLINE mask_t mask_and(mask_t a, mask_t b)
+{
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        a.b[i] &= b.b[i];
+    }
+    return a;
+}
+
+static SVM_INLINE mask_t mask_and_not(mask_t a, mask_t b)
+{
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        a.b[i] &= (uint8_t)~b.b[i];
+    }
+    return a;
+}
+
+static SVM_INLINE mask_t mask_or_not(mask_t a, mask_t b)
+{
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        a.b[i] |= (uint8_t)~b.b[i];
+    }
+    return a;
+}
+
+static SVM_INLINE uint8_t mask_any(mask_t a)
+{
+    uint8_t i, any = 0;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        any |= a.b[i];
+    }
+    return any != 0u;
+}
+
+static mask_t mask_low(uint8_t n)
+{
+    mask_t mask;
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++, n = (uint8_t)(n >= 8u ? n - 8u : 0u)) {
+        mask.b[i] = n >= 8u ? 0xFFu : (uint8_t)((1u << n) - 1u);
+    }
+    return mask;
+}
+#define MASK_LOW_MAX mask_low(SVM_MAX_EVENTS)
+
+/* Cursor: the events not visited yet, and the index of the current byte. */
+typedef struct cursor {
+    mask_t rest;
+    uint8_t at;
+    uint8_t base;
+} cursor_t;
+
+static SVM_INLINE void cursor_start(cursor_t *c, mask_t mask)
+{
+    c->rest = mask;
+    c->at = 0;
+    c->base = 0;
+}
+
+static SVM_INLINE uint8_t cursor_any(const cursor_t *c) { return mask_any(c->rest); }
+static SVM_INLINE uint8_t cursor_byte(const cursor_t *c) { return c->rest.b[c->at]; }
+
+static SVM_INLINE void cursor_skip_byte(cursor_t *c)
+{
+    c->rest.b[c->at++] = 0;
+    c->base = (uint8_t)(c->base + 8u);
+}
+
+static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest.b[c->at] ^= bit; }
+
+#endif /* MASK_ARRAY */
+
+static SVM_INLINE uint8_t mask_count(mask_t a)
+{
+    cursor_t c;
+    uint8_t count = 0;
+    for (cursor_start(&c, a); cursor_any(&c); cursor_skip_byte(&c)) {
+        count = (uint8_t)(count + popcount8(cursor_byte(&c)));
+    }
+    return count;
+}
+
+/* The next event of the cursor (which has one), visited; its bit in its mask byte in `*bit`. */
+static SVM_INLINE uint8_t cursor_next(cursor_t *c, uint8_t *bit)
+{
+    uint8_t low, event;
+    while ((low = cursor_byte(c)) == 0u) {
+        cursor_skip_byte(c);
+    }
+    low = (uint8_t)(low & (uint8_t)-low);
+    cursor_clear(c, low);
+    *bit = low;
+    for (event = c->base; low != 1u; low = (uint8_t)(low >> 1)) {
+        event++;
+    }
+    return event;
 }
 
 /* ---- checksum and validation ------------------------------------------------------------- */
@@ -263,6 +540,7 @@ void svm_init(svm_vm_t *vm)
     vm->chooser_ctx = 0;
     vm->on_violation = 0;
     vm->priority = 0;
+    vm->priority_by_name = 0;
     vm->seed = SVM_DEFAULT_SEED;
     vm->rng = SVM_DEFAULT_SEED;
 }
@@ -297,7 +575,7 @@ static uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at,
 static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
                        const layout_t *lay, uint8_t old_event)
 {
-    uint16_t old_pos = name_at(vm->image, vm->in_flash, vm->names_at, old_event);
+    uint16_t old_pos = name_at(vm->image, vm->source, vm->names_at, old_event);
     uint8_t old_len = RD(vm, old_pos);
     uint8_t e, count = rd_raw(image, source, 6), i;
     uint16_t pos = lay->names_at;
@@ -370,21 +648,46 @@ static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, co
     return SVM_OK;
 }
 
+/* Swap: the priority list of svm_bind_priority follows its events' names into the new image;
+ * with `write` 0 only checks that every name is there, so that a refusal changes nothing. */
+static int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay,
+                           uint8_t write)
+{
+    uint8_t k;
+    for (k = 0; k < vm->priority_count; k++) {
+        int to = -1;
+        if (vm->priority_by_name[k] < vm->num_events) {
+            to = lay->names_at == 0 ? -1 : find_in_new(vm, image, source, lay, vm->priority_by_name[k]);
+            if (to < 0) {
+                return SVM_ERR_NAMES;
+            }
+        }
+        if (write) {
+            vm->priority_by_name[k] = to < 0 ? 0xFFu : (uint8_t)to;
+        }
+    }
+    return SVM_OK;
+}
+
 static int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
+    uint8_t rebind = vm->image != 0 && vm->names_at != 0;
     int result = validate(image, source, length, &lay);
     if (result != SVM_OK) {
         return result;
     }
-    if (vm->image != 0 && vm->bindings != 0 && vm->names_at != 0) {
-        result = rebind_by_name(vm, image, source, &lay);
-        if (result != SVM_OK) {
-            return result;
-        }
+    if (rebind && vm->priority_by_name != 0 && (result = rebind_priority(vm, image, source, &lay, 0)) != SVM_OK) {
+        return result;
+    }
+    if (rebind && vm->bindings != 0 && (result = rebind_by_name(vm, image, source, &lay)) != SVM_OK) {
+        return result;
+    }
+    if (rebind && vm->priority_by_name != 0) {
+        (void)rebind_priority(vm, image, source, &lay, 1);
     }
     vm->image = image;
-    vm->in_flash = source;
+    vm->source = source;
     vm->states_at = lay.states_at;
     vm->targets_at = lay.targets_at;
     vm->probs_at = lay.probs_at;
@@ -469,7 +772,14 @@ void svm_set_chooser(svm_vm_t *vm, svm_chooser_fn chooser, void *ctx)
 void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count)
 {
     vm->priority = events;
+    vm->priority_by_name = 0;
     vm->priority_count = events != 0 ? count : 0u;
+}
+
+void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count)
+{
+    svm_set_priority(vm, events, count);
+    vm->priority_by_name = events;
 }
 
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
@@ -503,20 +813,16 @@ uint32_t svm_random(svm_vm_t *vm)
  * at every read. */
 
 /* Index (into the target/probability sections) of the transition on the event (`byte`,
- * `bit`) from the state whose record is `st`; NO_TRANSITION when it has none (an index is
- * below T <= 65535, so the value is free). */
-#define NO_TRANSITION 0xFFFFu
-static uint16_t transition(uint8_t src, const uint8_t *st, uint8_t m, uint8_t byte, uint8_t bit)
+ * `bit`) from the state whose record is `st` and whose `defined` mask byte `byte` is
+ * `defined` (it has the event): the state's first successor plus the number of its events
+ * below this one. Only the mask bytes up to the event's are read. */
+static SVM_INLINE uint16_t successor(uint8_t src, const uint8_t *st, uint8_t m, uint8_t defined, uint8_t byte,
+                                     uint8_t bit)
 {
-    uint8_t defined = PEEK(src, st + byte);
-    uint16_t rank;
+    uint8_t rank = popcount8((uint8_t)(defined & (bit - 1u)));
     const uint8_t *below;
-    if (!(defined & bit)) {
-        return NO_TRANSITION;
-    }
-    rank = popcount8((uint8_t)(defined & (bit - 1u)));
     for (below = st; byte != 0u; below++, byte--) {
-        rank = (uint16_t)(rank + popcount8(PEEK(src, below)));
+        rank = (uint8_t)(rank + popcount8(PEEK(src, below)));
     }
     return (uint16_t)(peek16(src, st + m) + rank);
 }
@@ -533,98 +839,82 @@ static void violation(svm_vm_t *vm, uint8_t event, uint8_t s)
 
 /* Docs/semantics.md step 3: move every supervisor that has the event, count violations, then
  * run the event's action. Supervisor records are walked in order, without multiplications.
- * `m` is the mask width: see enabled_set for why it is a parameter. */
-static SVM_INLINE void apply_m(svm_vm_t *vm, uint8_t event, uint8_t m)
+ * `m` is the mask width: see step_m for why it is a parameter. */
+static SVM_INLINE void apply(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
     const uint8_t *img = vm->image;
     const uint8_t *states = img + vm->states_at, *targets = img + vm->targets_at;
     const uint8_t *sup = img + SUPS_AT(m);
     svm_state_t *state = vm->state;
-    uint8_t src = vm->in_flash, n = vm->num_supervisors, narrow = vm->width == 1u;
-    uint8_t byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
+    uint8_t src = vm->source, n = vm->num_supervisors, narrow = vm->width == 1u, s;
     for (s = 0; s < n; s++, sup += SUP_SIZE(m)) {
+        const uint8_t *st;
+        uint8_t defined;
         uint16_t t, local;
         if (!(PEEK(src, sup + byte) & bit)) {
             continue;
         }
-        t = transition(src, states + (uint16_t)state[s] * STATE_SIZE(m), m, byte, bit);
-        if (t == NO_TRANSITION) {
+        st = states + (uint16_t)state[s] * STATE_SIZE(m);
+        defined = PEEK(src, st + byte);
+        if (!(defined & bit)) {
             violation(vm, event, s);
             continue;
         }
+        t = successor(src, st, m, defined, byte, bit);
         local = narrow ? PEEK(src, targets + t) : peek16(src, targets + 2u * t);
         state[s] = (svm_state_t)(peek16(src, sup + m) + local);
     }
     run_action(vm, event);
 }
 
-static void apply_exact(svm_vm_t *vm, uint8_t event)
-{
-    apply_m(vm, event, SVM_MASK_BYTES);
-}
-
-#if SVM_MASK_EXACT
-#define apply apply_exact
-#else
-static void apply_any(svm_vm_t *vm, uint8_t event)
-{
-    apply_m(vm, event, MASK_WIDTH(vm->mask_bytes));
-}
-
-static void apply(svm_vm_t *vm, uint8_t event)
-{
-    if (vm->mask_bytes == SVM_MASK_BYTES) {
-        apply_exact(vm, event);
-    } else {
-        apply_any(vm, event);
-    }
-}
-#endif
-
-/* The enabled set for masks of `m` bytes. Called with the compile-time SVM_MASK_BYTES when the
- * image's masks have exactly that width (builds with the model's exact limits), the compiler
- * then unrolls the byte loops and keeps the mask in registers: about 3x faster on AVR. */
-static SVM_INLINE uint8_t enabled_set(const svm_vm_t *vm, uint8_t *enabled, uint8_t m)
+/* The enabled controllable events among `candidates` (docs/semantics.md step 5). */
+static SVM_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint8_t m)
 {
     const uint8_t *img = vm->image, *sup = img + SUPS_AT(m), *states = img + vm->states_at;
     const svm_state_t *state = vm->state;
-    uint8_t src = vm->in_flash, n = vm->num_supervisors, i, s, count = 0;
-    uint8_t mask[SVM_MASK_BYTES];   /* local, so that it can live in registers */
-    for (i = 0; i < m; i++) {
-        mask[i] = PEEK(src, img + CONTROLLABLE_AT + i);
-    }
-    mask[m - 1u] &= valid_bits(vm->num_events, (uint8_t)(m - 1u));
-    for (s = n; s != 0u; s--, sup += SUP_SIZE(m)) {
+    uint8_t src = vm->source, s;
+    for (s = vm->num_supervisors; s != 0u; s--, sup += SUP_SIZE(m)) {
         const uint8_t *st = states + (uint16_t)*state++ * STATE_SIZE(m);
-        for (i = 0; i < m; i++) {
-            mask[i] &= (uint8_t)(PEEK(src, st + i) | (uint8_t)~PEEK(src, sup + i));
-        }
+        candidates = mask_and(candidates, mask_or_not(mask_read(src, st, m), mask_read(src, sup, m)));
     }
-    for (i = 0; i < m; i++) {
-        enabled[i] = mask[i];
-        count = (uint8_t)(count + popcount8(mask[i]));
-    }
-    return count;
+    return candidates;
+}
+
+/* The events 0 .. E-1 of the loaded image. */
+static SVM_INLINE mask_t valid_events(const svm_vm_t *vm)
+{
+    return vm->num_events == SVM_MAX_EVENTS ? MASK_LOW_MAX : mask_low(vm->num_events);
+}
+
+static SVM_INLINE mask_t enabled_m(const svm_vm_t *vm, uint8_t m)
+{
+    mask_t controllable = mask_read(vm->source, vm->image + CONTROLLABLE_AT, m);
+    return enabled_set(vm, mask_and(controllable, valid_events(vm)), m);
 }
 
 uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled)
 {
+    mask_t mask;
     if (vm->image == 0) {
         return 0;
     }
 #if !SVM_MASK_EXACT
     if (vm->mask_bytes != SVM_MASK_BYTES) {
-        return enabled_set(vm, enabled, MASK_WIDTH(vm->mask_bytes));
-    }
+        mask = enabled_m(vm, MASK_WIDTH(vm->mask_bytes));
+    } else
 #endif
-    return enabled_set(vm, enabled, SVM_MASK_BYTES);
+    {
+        mask = enabled_m(vm, SVM_MASK_BYTES);
+    }
+    mask_store(enabled, mask, vm->mask_bytes);
+    return mask_count(mask);
 }
 
 uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
     uint32_t weight = Q15_ONE;
-    uint8_t src = vm->in_flash, m = vm->mask_bytes, byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
+    uint8_t src = vm->source, m = vm->mask_bytes, byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
     if (vm->probs_at == 0) {
         return weight;
     }
@@ -632,13 +922,10 @@ uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
     states = img + vm->states_at;
     probs = img + vm->probs_at;
     for (s = 0; s < vm->num_supervisors; s++, sup += SUP_SIZE(m)) {
-        uint16_t t;
-        if (!(PEEK(src, sup + byte) & bit)) {
-            continue;
-        }
-        t = transition(src, states + (uint16_t)vm->state[s] * STATE_SIZE(m), m, byte, bit);
-        if (t != NO_TRANSITION) {
-            weight = (weight * peek16(src, probs + 2u * t)) >> 15;
+        const uint8_t *st = states + (uint16_t)vm->state[s] * STATE_SIZE(m);
+        uint8_t defined = PEEK(src, st + byte);
+        if ((PEEK(src, sup + byte) & bit) && (defined & bit)) {
+            weight = (weight * peek16(src, probs + 2u * successor(src, st, m, defined, byte, bit))) >> 15;
         }
     }
     return weight;
@@ -665,42 +952,77 @@ uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
     return 0xFFu;
 }
 
-/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. */
-static uint8_t select_event(svm_vm_t *vm, const uint8_t *enabled, uint8_t count)
+/* The `n`-th event (from 0) of `mask`, which has more than n: whole bytes are counted first. */
+static uint8_t nth_event(mask_t mask, uint8_t n)
 {
-    uint8_t m = vm->mask_bytes, policy = (uint8_t)(vm->options & SVM_POLICY_MASK);
+    cursor_t c;
+    uint8_t ones, bit, event;
+    cursor_start(&c, mask);
+    while (n >= (ones = popcount8(cursor_byte(&c)))) {
+        n = (uint8_t)(n - ones);
+        cursor_skip_byte(&c);
+    }
+    do {
+        event = cursor_next(&c, &bit);
+    } while (n-- != 0u);
+    return event;
+}
+
+/* floor(((r >> 16) * count) / 65536) (docs/semantics.md, policy uniform) with 8 x 8-bit
+ * products: with h = r >> 16 = 256 hi + lo, h * count / 65536 = (hi * count + lo * count / 256)
+ * / 256, each division a floor. */
+static uint8_t uniform_index(uint32_t r, uint8_t count)
+{
+    uint8_t hi = (uint8_t)(r >> 24), lo = (uint8_t)(r >> 16);
+    uint16_t low_part = (uint16_t)((uint16_t)lo * count) >> 8;
+    return (uint8_t)(((uint16_t)((uint16_t)hi * count) + low_part) >> 8);
+}
+
+/* Whether event `e` (< E) is in the byte mask `bytes`. */
+static uint8_t has_event(const uint8_t *bytes, uint8_t e)
+{
+    return (uint8_t)((bytes[e >> 3] >> (e & 7u)) & 1u);
+}
+
+/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. */
+static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
+{
+    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), bytes[SVM_MASK_BYTES], e;
+    if (policy == SVM_POLICY_LEARNED || policy == SVM_POLICY_FIRST) {
+        mask_store(bytes, enabled, vm->mask_bytes);
+    }
     if (policy == SVM_POLICY_LEARNED) {
-        uint8_t e;
         if (vm->chooser == 0) {
             return 0xFFu;
         }
-        e = vm->chooser(vm, enabled, count, vm->chooser_ctx);
-        return (e < vm->num_events && (enabled[e >> 3] & (1u << (e & 7u)))) ? e : 0xFFu;
+        e = vm->chooser(vm, bytes, count, vm->chooser_ctx);
+        return (e < vm->num_events && has_event(bytes, e)) ? e : 0xFFu;
     }
     if (policy == SVM_POLICY_FIRST) {
         uint8_t k;
         for (k = 0; k < vm->priority_count; k++) {
-            uint8_t e = vm->priority[k];
-            if (e < vm->num_events && (enabled[e >> 3] & (1u << (e & 7u)))) {
+            e = vm->priority[k];
+            if (e < vm->num_events && has_event(bytes, e)) {
                 return e;
             }
         }
-        return svm_mask_nth(enabled, m, 0);
+        return nth_event(enabled, 0);
     }
     if (count == 1u) {
-        return svm_mask_nth(enabled, m, 0);
+        return nth_event(enabled, 0);
     }
     if (policy == SVM_POLICY_WEIGHTED) {
         uint32_t total = 0, pick;
-        uint8_t k, e;
-        for (k = 0; k < count; k++) {
-            total += svm_weight(vm, svm_mask_nth(enabled, m, k));
+        cursor_t c;
+        uint8_t bit;
+        for (cursor_start(&c, enabled); cursor_any(&c);) {
+            total += svm_weight(vm, cursor_next(&c, &bit));
         }
         if (total != 0) {
             pick = svm_random(vm) % total;
-            for (k = 0; k < count; k++) {
+            for (cursor_start(&c, enabled); cursor_any(&c);) {
                 uint32_t w;
-                e = svm_mask_nth(enabled, m, k);
+                e = cursor_next(&c, &bit);
                 w = svm_weight(vm, e);
                 if (pick < w) {
                     return e;
@@ -709,117 +1031,99 @@ static uint8_t select_event(svm_vm_t *vm, const uint8_t *enabled, uint8_t count)
             }
         }
     }
-    return svm_mask_nth(enabled, m, (uint8_t)((((svm_random(vm) >> 16) & 0xFFFFu) * count) >> 16));
+    return nth_event(enabled, uniform_index(svm_random(vm), count));
 }
 
 /* Docs/semantics.md step 1: the check values of the uncontrollable events, in input order
- * (public ones first). `m` as in enabled_set. The binding table and dispatch are read once per
- * step (callbacks must not rebind during a step). */
-static SVM_INLINE void poll_m(svm_vm_t *vm, uint8_t *current, uint8_t m)
+ * (`first`: the public ones, then `second`: the private ones). The binding table and dispatch
+ * are read once per step (callbacks must not rebind during a step). */
+static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 {
-    const uint8_t *img = vm->image;
     const svm_binding_t *bindings = vm->bindings;
     svm_dispatch_fn dispatch = vm->dispatch;
-    uint8_t src = vm->in_flash, cap = bindings != 0 ? vm->bindings_cap : 0u, pass, i, bit;
-    for (i = 0; i < m; i++) {
+    uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u, pass, i, current[SVM_MASK_BYTES];
+    cursor_t c;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
         current[i] = 0;
     }
-    for (pass = 0; pass < 2u; pass++) {
-        for (i = 0; i < m; i++) {
-            uint8_t pub = PEEK(src, img + PUBLIC_AT(m) + i), event = (uint8_t)(8u * i);
-            uint8_t polled = (uint8_t)(~PEEK(src, img + CONTROLLABLE_AT + i) & (pass == 0u ? pub : (uint8_t)~pub));
-            if (i == m - 1u) {
-                polled &= valid_bits(vm->num_events, i);
-            }
-            for (bit = 1; polled != 0u; bit = (uint8_t)(bit << 1), event++) {
+    for (pass = 0, cursor_start(&c, first); pass < 2u; pass++, cursor_start(&c, second)) {
+        for (; cursor_any(&c); cursor_skip_byte(&c)) {
+            uint8_t todo = cursor_byte(&c), bit = 1, event = c.base, occurred = 0;
+            for (; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
                 uint8_t occurs;
-                if ((polled & bit) == 0u) {
+                if (!(todo & 1u)) {
                     continue;
                 }
-                polled &= (uint8_t)~bit;
                 if (event < cap && bindings[event].check != 0) {
                     occurs = bindings[event].check(bindings[event].data) != 0;
                 } else {
                     occurs = dispatch != 0 && dispatch(vm, event, SVM_OP_CHECK) != 0;
                 }
                 if (occurs) {
-                    current[i] |= bit;
+                    occurred |= bit;
+                }
+            }
+            current[c.base >> 3] |= occurred;
+        }
+    }
+    return mask_load(current);
+}
+
+/* The step for masks of `m` bytes. Called with the compile-time SVM_MASK_BYTES when the image's
+ * masks have exactly that width (builds with the model's exact limits): the compiler then
+ * folds the record sizes and reads each mask in one go. */
+static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
+{
+    const uint8_t *img = vm->image;
+    uint8_t src = vm->source, options = vm->options, fired = 0, pass, count;
+    mask_t valid = valid_events(vm);
+    mask_t controllable = mask_and(mask_read(src, img + CONTROLLABLE_AT, m), valid);
+    mask_t public_mask = mask_read(src, img + PUBLIC_AT(m), m);
+    mask_t uncontrollable = mask_and_not(valid, controllable);
+    /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
+    mask_t current = poll(vm, mask_and(uncontrollable, public_mask), mask_and_not(uncontrollable, public_mask));
+    mask_t occurring = current;
+    cursor_t inputs;
+    if (options & SVM_INPUTS_EDGE) {
+        occurring = mask_and_not(current, mask_load(vm->previous));
+    }
+    mask_store(vm->previous, current, SVM_MASK_BYTES);
+    /* 3. The occurring events in input order, public then private. */
+    for (pass = 0, cursor_start(&inputs, mask_and(occurring, public_mask)); pass < 2u;
+         pass++, cursor_start(&inputs, mask_and_not(occurring, public_mask))) {
+        for (; cursor_any(&inputs); cursor_skip_byte(&inputs)) {
+            uint8_t todo = cursor_byte(&inputs), bit = 1, event = inputs.base;
+            for (; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
+                if (todo & 1u) {
+                    apply(vm, event, (uint8_t)(inputs.base >> 3), bit, m);
+                    fired++;
                 }
             }
         }
     }
-}
-
-/* Removes and returns the lowest event of `mask` (m bytes), 0xFF when it is empty. */
-static uint8_t take_lowest(uint8_t *mask, uint8_t m)
-{
-    uint8_t i, bit, event;
-    for (i = 0; i < m; i++) {
-        if (mask[i] != 0u) {
-            for (bit = 1, event = (uint8_t)(8u * i); (mask[i] & bit) == 0u; bit = (uint8_t)(bit << 1)) {
-                event++;
-            }
-            mask[i] &= (uint8_t)~bit;
-            return event;
+    /* 4. Control phase (with if-quiet, none after an input); 5-6: enabled set, selection. */
+    if (!(mask_any(occurring) && (options & SVM_CONTROL_IF_QUIET))) {
+        mask_t enabled = enabled_set(vm, controllable, m);
+        uint8_t event;
+        if ((count = mask_count(enabled)) != 0u && (event = select_event(vm, enabled, count)) != 0xFFu) {
+            apply(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), m);
+            fired++;
         }
     }
-    return 0xFFu;
+    return fired;
 }
 
 uint8_t svm_step(svm_vm_t *vm)
 {
-    /* Occurring public and private inputs still to apply, then the control phase: one loop with
-     * a single apply site, which the compiler inlines. */
-    uint8_t public_in[SVM_MASK_BYTES], private_in[SVM_MASK_BYTES], enabled[SVM_MASK_BYTES];
-    uint8_t m = MASK_WIDTH(vm->mask_bytes), fired = 0, any = 0, controlled = 0, i;
     if (vm->image == 0) {
         return 0;
     }
-    /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
-#if SVM_MASK_EXACT
-    poll_m(vm, public_in, SVM_MASK_BYTES);
-#else
-    if (m == SVM_MASK_BYTES) {
-        poll_m(vm, public_in, SVM_MASK_BYTES);
-    } else {
-        poll_m(vm, public_in, MASK_WIDTH(m));
+#if !SVM_MASK_EXACT
+    if (vm->mask_bytes != SVM_MASK_BYTES) {
+        return step_m(vm, MASK_WIDTH(vm->mask_bytes));
     }
 #endif
-    for (i = 0; i < m; i++) {
-        uint8_t now = public_in[i], pub = RD(vm, PUBLIC_AT(m) + i);
-        if (vm->options & SVM_INPUTS_EDGE) {
-            public_in[i] &= (uint8_t)~vm->previous[i];
-        }
-        vm->previous[i] = now;
-        any |= public_in[i];
-        private_in[i] = (uint8_t)(public_in[i] & (uint8_t)~pub);
-        public_in[i] &= pub;
-    }
-    /* 4. Control phase: with if-quiet, none after an input. */
-    if (any && (vm->options & SVM_CONTROL_IF_QUIET)) {
-        controlled = 1;
-    }
-    for (;;) {
-        /* 3. The occurring events in input order; then 5-6: enabled set, selection. */
-        uint8_t event = take_lowest(public_in, m);
-        if (event == 0xFFu) {
-            event = take_lowest(private_in, m);
-        }
-        if (event == 0xFFu) {
-            uint8_t count;
-            if (controlled) {
-                break;
-            }
-            controlled = 1;
-            count = svm_enabled(vm, enabled);
-            if (count == 0u || (event = select_event(vm, enabled, count)) == 0xFFu) {
-                break;
-            }
-        }
-        apply(vm, event);
-        fired++;
-    }
-    return fired;
+    return step_m(vm, SVM_MASK_BYTES);
 }
 
 /* ---- inspection ---------------------------------------------------------------------------- */
@@ -839,12 +1143,30 @@ uint8_t svm_mask_bytes(const svm_vm_t *vm)
     return vm->mask_bytes;
 }
 
+uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
+{
+    if (vm->image == 0 || supervisor >= vm->num_supervisors) {
+        return 0;
+    }
+    return RD16(vm, SUP_AT(vm, supervisor) + vm->mask_bytes);
+}
+
 uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor)
 {
     if (vm->image == 0 || supervisor >= vm->num_supervisors) {
         return 0;
     }
-    return (uint16_t)(vm->state[supervisor] - RD16(vm, SUP_AT(vm, supervisor) + vm->mask_bytes));
+    return (uint16_t)(vm->state[supervisor] - svm_first_state(vm, supervisor));
+}
+
+uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor)
+{
+    return (vm->image == 0 || supervisor >= vm->num_supervisors) ? 0u : vm->state[supervisor];
+}
+
+uint16_t svm_num_states(const svm_vm_t *vm)
+{
+    return vm->image == 0 ? 0u : RD16(vm, 8);
 }
 
 uint16_t svm_violations(const svm_vm_t *vm)
@@ -908,7 +1230,7 @@ uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap
     if (vm->image == 0 || vm->names_at == 0 || event >= vm->num_events) {
         return 0;
     }
-    pos = name_at(vm->image, vm->in_flash, vm->names_at, event);
+    pos = name_at(vm->image, vm->source, vm->names_at, event);
     len = RD(vm, pos);
     for (i = 0; i < len && (uint16_t)i + 1u < cap; i++) {
         buf[i] = (char)RD(vm, pos + 1u + i);

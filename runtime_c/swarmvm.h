@@ -20,6 +20,8 @@
  *   SVM_IMAGE_SOURCES     AVR only: where images may live: SVM_FLASH_OR_RAM (default),
  *                         SVM_FLASH_ONLY (svm_load_P only; faster, smaller), SVM_RAM_ONLY,
  *                         or SVM_ANY_SOURCE (also EEPROM, svm_load_E)
+ *   SVM_POPCOUNT_TABLE    1: count the bits of a mask byte with a 256-byte table in flash
+ *                         (default on AVR, where it saves about 4 % of a step), 0: arithmetic
  */
 #ifndef SWARMVM_H
 #define SWARMVM_H
@@ -44,6 +46,13 @@
 #define SVM_ANY_SOURCE 3
 #ifndef SVM_IMAGE_SOURCES
 #define SVM_IMAGE_SOURCES SVM_FLASH_OR_RAM
+#endif
+#ifndef SVM_POPCOUNT_TABLE
+#if defined(__AVR__)
+#define SVM_POPCOUNT_TABLE 1
+#else
+#define SVM_POPCOUNT_TABLE 0
+#endif
 #endif
 
 #if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > 255
@@ -150,7 +159,7 @@ typedef struct svm_vm {
     uint8_t num_supervisors;
     uint8_t mask_bytes;
     uint8_t width;              /* bytes of a target state number: 1 or 2 */
-    uint8_t in_flash;           /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
+    uint8_t source;             /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
                                    (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte */
     uint8_t options;            /* SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_* */
     uint16_t violations;        /* saturates at 65535 */
@@ -165,6 +174,7 @@ typedef struct svm_vm {
     void *chooser_ctx;
     svm_violation_fn on_violation;
     const uint8_t *priority;    /* policy `first`: events to rank first, highest first */
+    uint8_t *priority_by_name;  /* the same list when a swap rebinds it (svm_bind_priority) */
     uint8_t priority_count;
 } svm_vm_t;
 
@@ -210,8 +220,15 @@ void svm_set_chooser(svm_vm_t *vm, svm_chooser_fn chooser, void *ctx);
 
 /* Policy `first`: the `count` event indices of `events` (RAM, kept by the caller) rank first,
  * in that order; the others follow by index. NULL / 0 restores plain index order. Indices
- * refer to the loaded image: set the list again after a swap (svm_event_index helps). */
+ * refer to the loaded image: set the list again after a swap (svm_event_index helps), or
+ * use svm_bind_priority. */
 void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count);
+
+/* The same, with a list the VM may rewrite: a swap then rebinds it by event name, as it does
+ * runtime bindings (each index becomes that of the new image's event of the same name; an
+ * image lacking one of the names is refused with SVM_ERR_NAMES; an entry that names no event
+ * becomes 0xFF, never enabled). */
+void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count);
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook);
 
 /* ---- running ---------------------------------------------------------------------------- */
@@ -235,6 +252,15 @@ uint8_t svm_num_events(const svm_vm_t *vm);
 uint8_t svm_num_supervisors(const svm_vm_t *vm);
 uint8_t svm_mask_bytes(const svm_vm_t *vm);
 uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor);
+
+/* States of all supervisors are also numbered together (docs/image-format.md, the states
+ * section): the supervisor's current state and its first state in that numbering
+ * (svm_global_state = svm_first_state + svm_state), and the number of all states. 0 without an
+ * image or for a supervisor out of range. For code that keeps a table row per state, e.g. a
+ * learner; they read the image wherever it lives (RAM, flash, EEPROM). */
+uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor);
+uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor);
+uint16_t svm_num_states(const svm_vm_t *vm);
 uint16_t svm_violations(const svm_vm_t *vm);
 uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event);
 uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event);

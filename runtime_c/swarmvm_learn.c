@@ -250,30 +250,19 @@ uint16_t svl_exp_neg_q15(uint32_t x)
     return (uint16_t)((EXP2(j) - ((((uint32_t)EXP2(j) - EXP2(j + 1)) * r) >> 12)) >> whole);
 }
 
-static uint8_t image_byte(const svm_vm_t *vm, uint16_t at)
-{
-    /* The image format is public (docs/image-format.md); the VM only keeps where it is. */
-    return vm->in_flash ? SVM_FLASH_BYTE(vm->image + at) : vm->image[at];
-}
-
-static uint16_t image_u16(const svm_vm_t *vm, uint16_t at)
-{
-    return (uint16_t)(image_byte(vm, at) | ((uint16_t)image_byte(vm, at + 1) << 8));
-}
-
 uint16_t svl_policy_size(const svm_vm_t *vm)
 {
     uint8_t e, width = 0;
     for (e = 0; e < svm_num_events(vm); e++) {
         width += svm_is_controllable(vm, e) ? 1 : 0;
     }
-    return (uint16_t)(image_u16(vm, 8) * width);
+    return (uint16_t)(svm_num_states(vm) * width);
 }
 
 int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_t cap,
                     uint16_t inv_temp_q8, uint16_t rate_q16, uint8_t baseline_shift)
 {
-    uint8_t e, s, m = svm_mask_bytes(vm);
+    uint8_t e;
     uint16_t i, size = svl_policy_size(vm);
     if (cap < size) {
         return -1;
@@ -285,10 +274,6 @@ int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_
         p->rank[e] = svm_is_controllable(vm, e) ? p->width++ : 0xFF;
     }
     p->num_supervisors = svm_num_supervisors(vm);
-    for (s = 0; s < p->num_supervisors; s++) {
-        /* supervisor record s: alphabet mask, then u16 first state */
-        p->first[s] = image_u16(vm, (uint16_t)(16 + 2 * m + s * (m + 6) + m));
-    }
     for (i = 0; i < size; i++) {
         theta[i] = 0;
     }
@@ -318,7 +303,7 @@ uint8_t svl_policy_choose(svm_vm_t *vm, const uint8_t *enabled, uint8_t count, v
         return events[0];
     }
     for (s = 0; s < p->num_supervisors; s++) {
-        p->rows[s] = (uint16_t)((p->first[s] + svm_state(vm, s)) * p->width);
+        p->rows[s] = (uint16_t)(svm_global_state(vm, s) * p->width);
     }
     for (i = 0; i < count; i++) {
         int32_t h = 0;

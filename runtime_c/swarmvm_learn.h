@@ -73,7 +73,6 @@ typedef struct svl_policy {
     uint8_t width;                      /* number of controllable events */
     uint8_t num_supervisors;
     uint8_t rank[SVM_MAX_EVENTS];       /* column of each controllable event */
-    uint16_t first[SVM_MAX_SUPERVISORS];/* global number of each supervisor's state 0 */
     uint16_t inv_temp_q8;               /* 1/temperature, Q8.8 (256 = 1.0) */
     uint16_t rate_q16;                  /* learning rate, Q16 (below 1.0) */
     uint8_t baseline_shift;             /* baseline moves 2^-shift of the way to each reward */

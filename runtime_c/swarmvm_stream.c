@@ -28,6 +28,8 @@ uint8_t svm_stream_feed(svm_stream_t *stream, const uint8_t chunk[SVM_CHUNK_BYTE
     uint8_t i;
     if (chunk[0] == 0u) {
         abandon(stream, SVM_STREAM_IDLE);
+    } else if ((uint16_t)(chunk[0] + 1u) == stream->next) {
+        return stream->status;  /* the last chunk taken, again (senders repeat messages) */
     } else if (stream->status != SVM_STREAM_RECEIVING || chunk[0] != stream->next) {
         return abandon(stream, SVM_STREAM_OUT_OF_SEQUENCE);
     }
@@ -53,7 +55,6 @@ uint8_t svm_stream_feed(svm_stream_t *stream, const uint8_t chunk[SVM_CHUNK_BYTE
     }
     stream->error = (uint8_t)svm_validate(stream->buffer, stream->length, 0u);
     stream->status = stream->error == SVM_OK ? SVM_STREAM_COMPLETE : SVM_STREAM_INVALID;
-    stream->next = 0u;
     return stream->status;
 }
 

@@ -7,7 +7,9 @@
  * its last two bytes are its CRC-16, so the stream needs no other framing: when the bytes up
  * to that length have arrived, the whole image is checked with svm_validate, and only a valid
  * image is offered to the application, which swaps it in between two steps with svm_load.
- * Chunk 0 always (re)starts a reception; a chunk out of sequence abandons the current one.
+ * Chunk 0 always (re)starts a reception; a chunk out of sequence abandons the current one,
+ * except the last chunk taken arriving again (a Kilobot repeats a message until it changes
+ * it), which changes nothing. Take a COMPLETE image before feeding the next chunk.
  * The buffer must not hold the image the VM is running: give the stream a buffer of its own.
  */
 #ifndef SWARMVM_STREAM_H

@@ -7,7 +7,7 @@ either compiled into a generated module as a bytes literal or read from a ``.svm
 go through :meth:`Image.parse`, so "compiled in" and "loaded" are one code path.
 """
 
-__all__ = ["Image", "ImageError", "VM", "XorShift32", "crc16", "SCT", "SCTPub", "format_trace_line", "replay"]
+__all__ = ["Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "crc16", "SCT", "SCTPub", "format_trace_line", "replay"]
 
 MAGIC = b"SVMI"
 FORMAT_VERSION = 1
@@ -35,6 +35,14 @@ def crc16(data, crc=0xFFFF):
 
 class ImageError(ValueError):
     """A table image that cannot be run: wrong magic or version, bad checksum, truncated."""
+
+
+class UnboundEvents(LookupError):
+    """Strict mode: uncontrollable events without a check (they could never occur)."""
+
+    def __init__(self, names):
+        super().__init__("no check bound for " + ", ".join(names))
+        self.names = names
 
 
 class XorShift32:
@@ -192,7 +200,7 @@ class VM:
     ``priority`` (event names, highest first) for ``first``."""
 
     def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
-                 priority=None, learner=None, on_violation=None):
+                 priority=None, learner=None, on_violation=None, strict=False):
         if inputs not in INPUT_MODES:
             raise ValueError("inputs must be one of %s" % (INPUT_MODES,))
         if control not in CONTROL_MODES:
@@ -202,7 +210,7 @@ class VM:
         if policy == "learned" and learner is None:
             raise ValueError("policy 'learned' needs a learner")
         self.inputs, self.control, self.policy = inputs, control, policy
-        self.seed, self.learner, self.on_violation = seed, learner, on_violation
+        self.seed, self.learner, self.on_violation, self.strict = seed, learner, on_violation, strict
         self._priority = priority
         self.actions, self.checks, self.data = {}, {}, {}
         self._install(image if isinstance(image, Image) else Image.parse(image))
@@ -242,17 +250,25 @@ class VM:
         """Swap in a new table image between two steps; states restart from its initial states.
 
         Callbacks bound by name are rebound by name; a name the new image lacks raises
-        ``KeyError`` before anything changes, so the VM keeps running the logic it had."""
+        ``KeyError`` before anything changes, so the VM keeps running the logic it had. Returns
+        the new image's uncontrollable events left without a check (reported before the image
+        is activated; in strict mode the image is refused with :class:`UnboundEvents`)."""
         new = image if isinstance(image, Image) else Image.parse(image)
         old_names = {e: self.image.event_name(e) for e in set(self.actions) | set(self.checks)}
         if old_names and new.names is None and self.image.names is not None:
             raise KeyError("the new image carries no event names to rebind callbacks by")
         mapping = {e: new.event_index(name) for e, name in old_names.items()} if self.image.names else {}
+        checks = {mapping.get(e, e): f for e, f in self.checks.items()}
+        everything = (1 << new.num_events) - 1
+        missing = [new.event_name(e) for e in _bits(everything & ~new.controllable) if e not in checks]
+        if self.strict and missing:
+            raise UnboundEvents(missing)
         self.actions = {mapping.get(e, e): f for e, f in self.actions.items()}
-        self.checks = {mapping.get(e, e): f for e, f in self.checks.items()}
+        self.checks = checks
         self.data = {mapping.get(e, e): d for e, d in self.data.items()}
         self._install(new)
         self.reset()
+        return missing
 
     # -- callbacks ----------------------------------------------------------------------------
     def _index(self, event):
@@ -348,6 +364,8 @@ class VM:
 
     def step(self):
         """One VM step; returns the events that fired, in order (indices)."""
+        if self.strict and self.unbound_checks():
+            raise UnboundEvents(self.unbound_checks())
         current = 0
         for event in self.input_order:
             check = self.checks.get(event)

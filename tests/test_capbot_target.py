@@ -22,7 +22,7 @@ ENV_SEED = 2024         # firmware/capbot/app_qemu.c: ENV_SEED
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
                   "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
-                  "src/swarmvm_sct.h", "src/swarmvm_sct.c"}
+                  "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/logic_page.h", "src/logic_page.c"}
 
 
 def gen(model, outdir, name="energy_worker"):
@@ -58,8 +58,8 @@ def test_generated_zephyr_application_is_complete(app):
 def test_main_steps_the_vm_every_100_ms(app):
     main = (app / "src" / "main.c").read_text()
     for needed in ("#include <zephyr/kernel.h>", "K_MSEC(100)", "k_timer_start(&step_timer, STEP_PERIOD, STEP_PERIOD)",
-                   "k_timer_status_sync(&step_timer)", "svm_step(&vm)", "svm_set_dispatch(&vm, energy_worker_dispatch)",
-                   "energy_worker_load(&vm)", "cb_motor_init()"):
+                   "k_timer_status_sync(&step_timer)", "svm_step(&vm)", "energy_worker_dispatch(machine, own, op)",
+                   "energy_worker_load(&vm)", "svm_logic_page_load(&vm, energy_worker_image", "cb_motor_init()"):
         assert needed in main
 
 

@@ -161,3 +161,31 @@ def test_nadzoru_compatible_api_runs_a_published_style_controller(vm, tmp_path):
     assert set(ev) == {"EV_move", "EV_btnStop", "EV_stop", "EV_btnMove"} and sum(controllable) == 2
     sct.run_step()
     assert log[0] == "btnMove" and sct.sup_current_state != [0]
+
+
+def test_strict_mode_refuses_to_step_and_lists_every_unbound_check(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP), strict=True)
+    machine.bind("tick", check=lambda _d: False)
+    with pytest.raises(vm.UnboundEvents) as refused:
+        machine.step()
+    assert refused.value.names == ["EV_zmsg", "EV_back"]
+    machine.bind("zmsg", check=lambda _d: False)
+    machine.bind("back", check=lambda _d: False)
+    assert machine.step() == [1]
+
+
+def test_a_new_image_needing_an_event_the_application_lacks_is_reported_before_activation(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    for name in ("tick", "zmsg", "back"):
+        machine.bind(name, check=lambda _d: False)
+    extra = LOOP.replace("num_events: 4", "num_events: 5").replace("EV_zmsg ]", "EV_zmsg, EV_alarm ]").replace(
+        "[ 1, 0, 0, 0 ]", "[ 1, 0, 0, 0, 0 ]").replace("[ 0, 0, 0, 1 ]", "[ 0, 0, 0, 1, 0 ]").replace(
+        "[ [ 1, 1, 1, 1 ] ]", "[ [ 1, 1, 1, 1, 0 ] ]")
+    assert machine.load(image_of(tmp_path, extra, "x.yaml")) == ["EV_alarm"]
+    strict = vm.VM(image_of(tmp_path, LOOP), strict=True)
+    for name in ("tick", "zmsg", "back"):
+        strict.bind(name, check=lambda _d: False)
+    before = strict.image
+    with pytest.raises(vm.UnboundEvents):
+        strict.load(image_of(tmp_path, extra, "y.yaml"))
+    assert strict.image is before and strict.step() == [1]

@@ -9,12 +9,20 @@
  * ENV_SEED, index mapping of docs/semantics.md: below(4) == 0), on top of what the controller's
  * own check says. The same draw in Python gives the event script of the reference trace.
  *
+ * The logic runs from the control-logic flash page when it holds a valid image (logic_page.h):
+ * the compiled-in image is loaded first, then swapped for the page's; a refused page is
+ * reported on stderr with its SVM_ERR_* code and the compiled-in logic runs. The controller's
+ * actions and checks are matched to the page image's events by name (events it does not
+ * know get no action and a check that returns 0).
+ *
  * Build with -DSVM_APP=<model name> -DSVM_APP_HEADER='"<model name>_tables.h"' and the model's
- * limit flags; the CapBot API comes from capbot.h / capbot_qemu.c (stand-ins).
+ * limit flags (or page_limits.flags); the CapBot API comes from capbot.h / capbot_qemu.c
+ * (stand-ins).
  */
 #include <stdio.h>
 
 #include "capbot.h"
+#include "logic_page.h"
 #include SVM_APP_HEADER
 
 #ifndef SVM_APP_STEPS
@@ -27,8 +35,12 @@
 #define CAT(a, b) CAT_(a, b)
 #define APP_DISPATCH CAT(SVM_APP, _dispatch)
 #define APP_LOAD CAT(SVM_APP, _load)
+#define APP_IMAGE CAT(SVM_APP, _image)
+#define APP_NAME_(a) #a
+#define APP_NAME(a) APP_NAME_(a)
 
 static svm_vm_t vm;
+static uint8_t to_compiled[SVM_MAX_EVENTS]; /* running image's event -> controller's event */
 static uint8_t fired[SVM_MAX_EVENTS + 1];
 static uint8_t num_fired;
 
@@ -60,7 +72,8 @@ static void draw_environment(void)
  * the events fired in this step. */
 static uint8_t traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
 {
-    uint8_t result = APP_DISPATCH(machine, event, op);
+    uint8_t own = to_compiled[event];
+    uint8_t result = own == SVM_LOGIC_NO_EVENT ? 0u : APP_DISPATCH(machine, own, op);
     if (op == SVM_OP_CHECK) {
         return (uint8_t)(result || ((occurs[event >> 3] >> (event & 7u)) & 1u));
     }
@@ -70,7 +83,7 @@ static uint8_t traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
     return result;
 }
 
-static void put_uint(unsigned long value)
+static void put_uint_to(unsigned long value, FILE *out)
 {
     char digits[12];
     int n = 0;
@@ -79,8 +92,13 @@ static void put_uint(unsigned long value)
         value /= 10u;
     } while (value != 0u);
     while (n != 0) {
-        (void)putchar(digits[--n]);
+        (void)fputc(digits[--n], out);
     }
+}
+
+static void put_uint(unsigned long value)
+{
+    put_uint_to(value, stdout);
 }
 
 static void put_trace_line(unsigned long step)
@@ -112,6 +130,25 @@ static void put_trace_line(unsigned long step)
     (void)putchar('\n');
 }
 
+/* Compiled-in logic first, then the flash page's if it holds a valid image. */
+static int load_logic(void)
+{
+    int page;
+    if (APP_LOAD(&vm) != SVM_OK) {
+        return 0;
+    }
+    page = svm_logic_page_load(&vm, APP_IMAGE, (uint16_t)sizeof APP_IMAGE, to_compiled);
+    /* fputs, not fprintf: printf's formatter would triple the application's flash. */
+    if (page == SVM_OK) {
+        (void)fputs("logic page: running its image\n", stderr);
+    } else {
+        (void)fputs("logic page: refused (swarmvm error ", stderr);
+        put_uint_to((unsigned long)page, stderr);
+        (void)fputs("), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
+    }
+    return 1;
+}
+
 int main(void)
 {
     unsigned long step;
@@ -121,7 +158,7 @@ int main(void)
     }
     svm_init(&vm);
     svm_set_dispatch(&vm, traced_dispatch);
-    if (APP_LOAD(&vm) != SVM_OK) {
+    if (!load_logic()) {
         return 1;
     }
     for (step = 1; step <= SVM_APP_STEPS; step++) {

@@ -8,14 +8,18 @@
 
 #include <stdint.h>
 
-/* A message: 9 bytes of payload, a type and a CRC (message_crc). */
+/* A message: 9 bytes of payload, a type and a CRC (message_crc). Types from SPECIAL (0x80)
+ * up are kilolib's own (boot loader, calibration) and never reach kilo_message_rx; an
+ * application may use the others. */
 typedef enum {
-    NORMAL = 0
+    NORMAL = 0,
+    GPS = 1,
+    SPECIAL = 0x80
 } message_type_t;
 
 typedef struct {
     uint8_t data[9];
-    message_type_t type;
+    uint8_t type;
     uint16_t crc;
 } message_t;
 

@@ -4,14 +4,21 @@
  * then loop() KILO_EMU_LOOPS times (default 100), advancing kilo_ticks once per loop, hands
  * the application's outgoing message back as sent, and writes what the robot would do on
  * USART0 (simavr prints it), one line per call: "color <c>", "motors <l> <r>", "tx <hex>".
+ * A build with -DKILO_EMU_SCRIPT also delivers scripted incoming messages (kilolib_emu.h).
  * It ends with cli(); sleep_cpu(), which simavr reports as the end of the run.
  */
 #include "kilolib.h"
+#include "kilolib_emu.h"
 
 #include <avr/interrupt.h>
 #include <avr/io.h>
+#include <avr/pgmspace.h>
 #include <avr/sleep.h>
 #include <util/crc16.h>
+
+#ifdef KILO_EMU_SCRIPT
+#include "kilo_emu_script.h"
+#endif
 
 #ifndef KILO_EMU_LOOPS
 #define KILO_EMU_LOOPS 100u
@@ -29,20 +36,20 @@ uint8_t kilo_straight_right = 70;
 
 static uint16_t rand_state = 0xACE1u;
 
-static void put(char c)
+void kilo_emu_put(char c)
 {
     loop_until_bit_is_set(UCSR0A, UDRE0);
     UDR0 = (uint8_t)c;
 }
 
-static void put_text(const char *s)
+void kilo_emu_print(const char *s)
 {
     while (*s != '\0') {
-        put(*s++);
+        kilo_emu_put(*s++);
     }
 }
 
-static void put_uint(uint16_t value)
+void kilo_emu_print_uint(uint16_t value)
 {
     char digits[5];
     uint8_t n = 0;
@@ -51,15 +58,15 @@ static void put_uint(uint16_t value)
         value /= 10u;
     } while (value != 0u);
     while (n != 0u) {
-        put(digits[--n]);
+        kilo_emu_put(digits[--n]);
     }
 }
 
 static void put_hex(uint8_t value)
 {
     static const char hex[] = "0123456789abcdef";
-    put(hex[value >> 4]);
-    put(hex[value & 0x0Fu]);
+    kilo_emu_put(hex[value >> 4]);
+    kilo_emu_put(hex[value & 0x0Fu]);
 }
 
 void kilo_init(void)
@@ -72,28 +79,58 @@ void kilo_init(void)
     kilo_ticks = 0;
 }
 
+__attribute__((weak)) void kilo_emu_after_loop(void)
+{
+}
+
+#ifdef KILO_EMU_SCRIPT
+/* Hand the scripted messages of loop `n` to the application; returns the next entry. */
+static uint16_t receive(uint16_t next, uint16_t n)
+{
+    while (next < KILO_EMU_SCRIPT_COUNT && pgm_read_word(&kilo_emu_script[next].loop) == n) {
+        message_t in;
+        distance_measurement_t distance = {0, 0};
+        memcpy_P(in.data, kilo_emu_script[next].data, sizeof in.data);
+        in.type = pgm_read_byte(&kilo_emu_script[next].type);
+        in.crc = message_crc(&in);
+        if (kilo_message_rx != 0) {
+            kilo_message_rx(&in, &distance);
+        }
+        next++;
+    }
+    return next;
+}
+#endif
+
 void kilo_start(void (*setup)(void), void (*loop)(void))
 {
     uint16_t n;
+#ifdef KILO_EMU_SCRIPT
+    uint16_t next = 0;
+#endif
     setup();
     for (n = 0; n < KILO_EMU_LOOPS; n++) {
         message_t *out;
+#ifdef KILO_EMU_SCRIPT
+        next = receive(next, n);
+#endif
         loop();
+        kilo_emu_after_loop();
         out = kilo_message_tx != 0 ? kilo_message_tx() : 0;
         if (out != 0) {
             uint8_t i;
-            put_text("tx ");
+            kilo_emu_print("tx ");
             for (i = 0; i < sizeof out->data; i++) {
                 put_hex(out->data[i]);
             }
-            put('\n');
+            kilo_emu_put('\n');
             if (kilo_message_tx_success != 0) {
                 kilo_message_tx_success();
             }
         }
         kilo_ticks++;
     }
-    put_text("end\n");
+    kilo_emu_print("end\n");
     cli();
     sleep_enable();
     sleep_cpu();
@@ -101,11 +138,11 @@ void kilo_start(void (*setup)(void), void (*loop)(void))
 
 void set_motors(uint8_t left, uint8_t right)
 {
-    put_text("motors ");
-    put_uint(left);
-    put(' ');
-    put_uint(right);
-    put('\n');
+    kilo_emu_print("motors ");
+    kilo_emu_print_uint(left);
+    kilo_emu_put(' ');
+    kilo_emu_print_uint(right);
+    kilo_emu_put('\n');
 }
 
 void spinup_motors(void)
@@ -115,9 +152,9 @@ void spinup_motors(void)
 
 void set_color(uint8_t color)
 {
-    put_text("color ");
-    put_uint(color);
-    put('\n');
+    kilo_emu_print("color ");
+    kilo_emu_print_uint(color);
+    kilo_emu_put('\n');
 }
 
 int16_t get_ambientlight(void)

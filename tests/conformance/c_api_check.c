@@ -3,7 +3,8 @@
  * test_c_host.py: every refusal code of svm_load and that a refused image leaves the running
  * logic untouched; names; rebinding by name on a swap (names permuted into one long cycle,
  * half the events bound); a swap refused for a missing name; the violation hook; the learned
- * policy's chooser; policy first with a priority list; a check bound to a controllable event. Images come from the generated
+ * policy's chooser; policy first with a priority list, and one rebound by name on a swap; a
+ * check bound to a controllable event. Images come from the generated
  * api_cases.h; each line printed is "<what> <value>", compared by the test.
  */
 #include <stdint.h>
@@ -142,6 +143,19 @@ int main(void)
         svm_reset(&vm);
         (void)svm_step(&vm);
         printf("first_priority %u\n", last_fired);
+    }
+
+    /* A priority list bound with svm_bind_priority follows its names on a swap (image_rotated:
+     * new name e = old name e+1); an image lacking one of them is refused, the list unchanged. */
+    {
+        static uint8_t ranked[2] = {0, 2};
+        svm_init(&vm);
+        (void)svm_load(&vm, image_a, sizeof image_a);
+        svm_bind_priority(&vm, ranked, 2);
+        k = (unsigned)svm_load(&vm, image_rotated, sizeof image_rotated);
+        printf("priority_swap %u %u %u\n", k, ranked[0], ranked[1]);
+        k = (unsigned)svm_load(&vm, image_missing, sizeof image_missing);
+        printf("priority_missing %u %u %u\n", k, ranked[0], ranked[1]);
     }
     return 0;
 }

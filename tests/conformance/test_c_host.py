@@ -107,6 +107,9 @@ def test_c_api_refusals_names_swap_hooks_and_chooser(tmp_path):
     assert out["learned_without_chooser"] == "0"
     assert out["learned_choice"].startswith("1 calls ") and int(out["learned_choice"].split()[-1]) >= 1
     assert int(out["first_plain"]) == plain and int(out["first_priority"]) == preferred != plain
+    last = parsed.num_events - 1     # old events 0 and 2 are the rotated image's last and 1
+    assert out["priority_swap"] == "0 %d 1" % last
+    assert out["priority_missing"] == "%d %d 1" % (NAMES, last)
 
 
 def parsed_targets(parsed):
