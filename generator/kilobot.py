@@ -1,4 +1,4 @@
-"""Gen-time checks of the Kilobot target (templates/kilobot/).
+"""What the Kilobot target (templates/kilobot/) needs computed and checked before rendering.
 
 A Kilobot message carries 9 bytes: the application sends a public event's name as its payload
 (EV_x sends "x", and a received "x" makes EV__x occur), cut to 9 characters. Two public events
@@ -15,10 +15,12 @@ def message_name(name, controllable):
     return name[1:] if not controllable and name.startswith("_") else name
 
 
-def check_message_names(compiled):
-    """Raise InputError naming the first two public events whose messages collide."""
+def prepare(compiled):
+    """Template values of the Kilobot target: ``messages`` (event index -> the name its message
+    carries, for public events) and ``wires`` (the distinct message names, in event order).
+    Raises InputError naming the first two public events whose messages collide."""
     model = compiled.model
-    seen = {}
+    messages, seen = {}, {}
     for i, name in enumerate(model.events):
         if not model.public[i]:
             continue
@@ -28,3 +30,5 @@ def check_message_names(compiled):
             raise InputError(model.source, "events", "public events EV_%s and EV_%s send the same Kilobot message %r "
                              "(a message carries the first %d characters of the name): rename one"
                              % (first[1], name, wire[:MESSAGE_BYTES], MESSAGE_BYTES))
+        messages[i] = wire
+    return dict(messages=messages, wires=list(dict.fromkeys(messages.values())))

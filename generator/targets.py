@@ -6,7 +6,7 @@ names may use ``{name}``; ``keep`` marks user-edited files that are never overwr
 
 from dataclasses import dataclass, field
 
-from .kilobot import check_message_names
+from . import kilobot
 from .render import context, render
 from .runtime import FIRMWARE, RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY
 
@@ -18,10 +18,11 @@ class Target:
     copies: tuple = field(default=())    # (source path, output name)
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
-    check: object = None                 # check(compiled) raises InputError for a model the target cannot take
+    prepare: object = None               # prepare(compiled) -> extra template values; InputError if unfit
 
 
-C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in ("swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c"))
+C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
+    "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
 
 TARGETS = {
     "python": Target(
@@ -62,7 +63,7 @@ TARGETS = {
                    ("kilobot/Makefile.j2", "Makefile", False),
                    ("kilobot/controller.c.j2", "{name}_controller.c", True)),
         copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_stream.h", "swarmvm_stream.c")),
-        check=check_message_names),
+        prepare=kilobot.prepare),
     "capbot": Target(
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
         templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
@@ -79,9 +80,8 @@ TARGETS = {
 def generate(compiled, target, **options):
     """{output name: (bytes, keep)} for one target: rendered templates, runtime copies, image."""
     spec = TARGETS[target]
-    if spec.check:
-        spec.check(compiled)
-    values = context(compiled, target=target, **options)
+    extra = spec.prepare(compiled) if spec.prepare else {}
+    values = context(compiled, target=target, **dict(options, **extra))
     templates, copies = spec.templates, spec.copies
     if options.get("learned_checks"):
         templates, copies = templates + spec.learned_templates, copies + spec.learned_copies

@@ -1,8 +1,9 @@
 # `make emulate`: the bundled example (model energy_worker) on the emulated robots.
-#   1. the Kilobot application (mk/kilobot.mk) in simavr and the CapBot application
-#      (mk/capbot.mk) in QEMU, first lines of their output;
-#      The CapBot VM binary logic-vm.elf then runs another supervisor (uav) written into its
-#      control-logic flash page (firmware/capbot/logic_page.h) from $(BUILD)/capbot/uav-logic.hex;
+#   1. a generated Kilobot application in simavr receiving a new supervisor over its messages
+#      (mk/kilobot_stream.mk: the trace switches at the swap), and the CapBot application
+#      (mk/capbot.mk) in QEMU, first lines of its trace; the CapBot VM binary logic-vm.elf then
+#      runs another supervisor (uav) written into its control-logic flash page
+#      (firmware/capbot/logic_page.h) from $(BUILD)/capbot/uav-logic.hex;
 #   2. one event script (`swarmvm script --steps $(EMULATE_STEPS) --seed $(EMULATE_SEED)`)
 #      replayed through the conformance harnesses on simavr, QEMU, host C and host C++, each
 #      trace diffed against `swarmvm trace` (the Python VM): one verdict line per target,
@@ -16,11 +17,9 @@ EMULATE_LINES ?= 6
 
 EMULATE_PAGE_MODEL ?= uav
 
-emulate: $(BUILD)/kilobot/energy_worker.elf $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/logic-vm.elf \
-  $(BUILD)/capbot/$(EMULATE_PAGE_MODEL)-logic.hex
-	@echo "== Kilobot application, simavr ATmega328P (emulator-only kilolib):"
-	@timeout 60 simavr -m atmega328p -f 8000000 $(BUILD)/kilobot/energy_worker.elf 2>&1 \
-	  | sed 's/\x1b\[[0-9;]*m//g; s/\.$$//' | grep -v '^Loaded' | head -n $(EMULATE_LINES)
+emulate: $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/logic-vm.elf $(BUILD)/capbot/$(EMULATE_PAGE_MODEL)-logic.hex
+	@echo "== Kilobot application, simavr ATmega328P, given a new supervisor at run time:"
+	@$(MAKE) -s --no-print-directory kilobot-swap-demo
 	@echo "== CapBot application, QEMU mps2-an386 (step, events fired, states, violations):"
 	@timeout 60 $(CAPBOT_QEMU) -kernel $(BUILD)/capbot/energy_worker.elf > $(BUILD)/capbot/energy_worker.trace \
 	  2> $(BUILD)/capbot/energy_worker.log; status=$$?; cat $(BUILD)/capbot/energy_worker.log; \

@@ -77,7 +77,6 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 /* vm->state[s] is the supervisor's *global* state number: its record is at
  * states_at + state * STATE_SIZE(m), found without reading the supervisor's first state. */
 
-
 /* A loaded image's mask width, clamped to 1..SVM_MASK_BYTES for the compiler's sake (load has
  * checked it already), so that loops over it provably stay inside the VM's mask arrays. */
 #define MASK_WIDTH(m) ((uint8_t)((m) - 1u) < SVM_MASK_BYTES ? (uint8_t)(m) : (uint8_t)1u)
@@ -341,8 +340,8 @@ static SVM_INLINE uint8_t mask_count(mask_t a)
     return count;
 }
 
-/* The next event of the cursor (which has one), visited; its bit in its mask byte in `*bit`. */
-static SVM_INLINE uint8_t cursor_next(cursor_t *c, uint8_t *bit)
+/* The next event of the cursor (which has one), then visited. */
+static SVM_INLINE uint8_t cursor_next(cursor_t *c)
 {
     uint8_t low, event;
     while ((low = cursor_byte(c)) == 0u) {
@@ -350,7 +349,6 @@ static SVM_INLINE uint8_t cursor_next(cursor_t *c, uint8_t *bit)
     }
     low = (uint8_t)(low & (uint8_t)-low);
     cursor_clear(c, low);
-    *bit = low;
     for (event = c->base; low != 1u; low = (uint8_t)(low >> 1)) {
         event++;
     }
@@ -956,14 +954,14 @@ uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
 static uint8_t nth_event(mask_t mask, uint8_t n)
 {
     cursor_t c;
-    uint8_t ones, bit, event;
+    uint8_t ones, event;
     cursor_start(&c, mask);
     while (n >= (ones = popcount8(cursor_byte(&c)))) {
         n = (uint8_t)(n - ones);
         cursor_skip_byte(&c);
     }
     do {
-        event = cursor_next(&c, &bit);
+        event = cursor_next(&c);
     } while (n-- != 0u);
     return event;
 }
@@ -1014,15 +1012,14 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
     if (policy == SVM_POLICY_WEIGHTED) {
         uint32_t total = 0, pick;
         cursor_t c;
-        uint8_t bit;
         for (cursor_start(&c, enabled); cursor_any(&c);) {
-            total += svm_weight(vm, cursor_next(&c, &bit));
+            total += svm_weight(vm, cursor_next(&c));
         }
         if (total != 0) {
             pick = svm_random(vm) % total;
             for (cursor_start(&c, enabled); cursor_any(&c);) {
                 uint32_t w;
-                e = cursor_next(&c, &bit);
+                e = cursor_next(&c);
                 w = svm_weight(vm, e);
                 if (pick < w) {
                     return e;

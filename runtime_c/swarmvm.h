@@ -4,9 +4,9 @@
  *
  * C99, no heap, no stdio, no floating point. The image is never copied: the VM keeps a
  * pointer to it and a few section offsets, so its RAM is the current states, the previous
- * check values (edge mode), the generator state, those offsets and the hooks (46 bytes for
+ * check values (edge mode), the generator state, those offsets and the hooks (48 bytes for
  * the Kilobot example energy_worker). The image may sit in flash: on AVR, svm_load_P() takes
- * a PROGMEM image and every table read goes through pgm_read_byte; svm_load() takes an image
+ * a PROGMEM image and table reads go through pgm_read_byte/word/dword; svm_load() takes an image
  * in RAM, svm_load_E() one in EEPROM (loaded at run time). Elsewhere all are plain reads.
  *
  * Compile-time limits (set by the build, e.g. -DSVM_MAX_EVENTS=10):

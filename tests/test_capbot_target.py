@@ -22,7 +22,8 @@ ENV_SEED = 2024         # firmware/capbot/app_qemu.c: ENV_SEED
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
                   "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
-                  "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/logic_page.h", "src/logic_page.c"}
+                  "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/logic_page.h",
+                  "src/logic_page.c"}
 
 
 def gen(model, outdir, name="energy_worker"):

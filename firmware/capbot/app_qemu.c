@@ -23,6 +23,7 @@
 
 #include "capbot.h"
 #include "logic_page.h"
+#include "swarmvm_trace.h"
 #include SVM_APP_HEADER
 
 #ifndef SVM_APP_STEPS
@@ -83,50 +84,19 @@ static uint8_t traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
     return result;
 }
 
-static void put_uint_to(unsigned long value, FILE *out)
+static void to_stdout(char c)
 {
-    char digits[12];
-    int n = 0;
-    do {
-        digits[n++] = (char)('0' + value % 10u);
-        value /= 10u;
-    } while (value != 0u);
-    while (n != 0) {
-        (void)fputc(digits[--n], out);
-    }
+    (void)putchar(c);
 }
 
-static void put_uint(unsigned long value)
+static void to_stderr(char c)
 {
-    put_uint_to(value, stdout);
+    (void)fputc(c, stderr);
 }
 
 static void put_trace_line(unsigned long step)
 {
-    char name[48];
-    uint8_t k;
-    put_uint(step);
-    (void)putchar(' ');
-    if (num_fired == 0u) {
-        (void)putchar('-');
-    }
-    for (k = 0; k < num_fired; k++) {
-        if (k != 0u) {
-            (void)putchar(',');
-        }
-        (void)svm_event_name(&vm, fired[k], name, sizeof name);
-        (void)fputs("EV_", stdout);
-        (void)fputs(name, stdout);
-    }
-    (void)putchar(' ');
-    for (k = 0; k < svm_num_supervisors(&vm); k++) {
-        if (k != 0u) {
-            (void)putchar(',');
-        }
-        put_uint(svm_state(&vm, k));
-    }
-    (void)putchar(' ');
-    put_uint(svm_violations(&vm));
+    svm_put_trace_line(to_stdout, &vm, (uint32_t)step, fired, num_fired);
     (void)putchar('\n');
 }
 
@@ -143,7 +113,7 @@ static int load_logic(void)
         (void)fputs("logic page: running its image\n", stderr);
     } else {
         (void)fputs("logic page: refused (swarmvm error ", stderr);
-        put_uint_to((unsigned long)page, stderr);
+        svm_put_decimal(to_stderr, (uint32_t)page);
         (void)fputs("), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
     }
     return 1;

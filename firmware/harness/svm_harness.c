@@ -10,6 +10,7 @@
  */
 #include "svm_harness.h"
 #include "swarmvm.h"
+#include "swarmvm_trace.h"
 #include "svm_cases.h"
 
 #include <stddef.h>
@@ -67,59 +68,17 @@ static void bound_action(void *data)
 
 static void put_str(const char *s)
 {
-    while (*s != '\0') {
-        svm_harness_putc(*s++);
-    }
+    svm_put_text(svm_harness_putc, s);
 }
 
 static void put_uint(uint32_t value)
 {
-    char digits[10];
-    uint8_t n = 0;
-    do {
-        digits[n++] = (char)('0' + value % 10u);
-        value /= 10u;
-    } while (value != 0u);
-    while (n != 0u) {
-        svm_harness_putc(digits[--n]);
-    }
-}
-
-static void put_event(uint8_t event)
-{
-    char name[48];
-    put_str("EV_");
-    if (svm_has_names(&vm)) {
-        (void)svm_event_name(&vm, event, name, sizeof name);
-        put_str(name);
-    } else {
-        put_uint(event);
-    }
+    svm_put_decimal(svm_harness_putc, value);
 }
 
 static void put_trace_line(uint16_t step)
 {
-    uint8_t k;
-    put_uint(step);
-    svm_harness_putc(' ');
-    if (num_fired == 0u) {
-        svm_harness_putc('-');
-    }
-    for (k = 0; k < num_fired; k++) {
-        if (k != 0u) {
-            svm_harness_putc(',');
-        }
-        put_event(fired[k]);
-    }
-    svm_harness_putc(' ');
-    for (k = 0; k < svm_num_supervisors(&vm); k++) {
-        if (k != 0u) {
-            svm_harness_putc(',');
-        }
-        put_uint(svm_state(&vm, k));
-    }
-    svm_harness_putc(' ');
-    put_uint(svm_violations(&vm));
+    svm_put_trace_line(svm_harness_putc, &vm, step, fired, num_fired);
 }
 
 static uint32_t flash_u32(const uint8_t *p)

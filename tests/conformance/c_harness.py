@@ -104,13 +104,14 @@ def _includes(outdir):
     return ["-I", str(outdir), "-I", str(RUNTIME_C), "-I", str(HARNESS)]
 
 
-def build_host(batch, outdir, compiler="gcc", exact_limits=True):
+def build_host(batch, outdir, compiler="gcc", exact_limits=True, defines=()):
     """A native harness program for the batch; returns its path. With ``exact_limits`` False
-    the runtime keeps its default limits, so the step runs its generic (any mask width) path."""
+    the runtime keeps its default limits (or those of ``defines``), so the step runs its
+    generic (any mask width) path."""
     outdir = _write_header(batch, outdir)
     exe = outdir / ("harness_%s" % batch.name)
     sources = CORE_SOURCES + HARNESS_SOURCES + [HARNESS / "platform_host.c"]
-    subprocess.run([compiler, *WARNINGS, "-O2", *(limits(batch) if exact_limits else []), *_includes(outdir),
+    subprocess.run([compiler, *WARNINGS, "-O2", *(limits(batch) if exact_limits else defines), *_includes(outdir),
                     *map(str, sources), "-o", str(exe)], check=True, capture_output=True, text=True)
     return exe
 

@@ -19,11 +19,18 @@ from conformance.cases import SUPERVISORS, batch
 from swarmvm.runtime import RUNTIME_C, python_vm
 
 
-@pytest.mark.parametrize("exact_limits", [True, False], ids=["exact-limits", "default-limits"])
+# Exact limits: one mask width, masks in a native integer; default limits (64 events): images
+# narrower than the build, 64-bit masks; wide limits (100 events): masks as byte arrays.
+BUILD_LIMITS = {"exact-limits": (True, ()), "default-limits": (False, ()),
+          "wide-limits": (False, ("-DSVM_MAX_EVENTS=100",))}
+
+
+@pytest.mark.parametrize("limits", BUILD_LIMITS)
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])
-def test_host_trace_equals_reference(path, exact_limits, tmp_path):
+def test_host_trace_equals_reference(path, limits, tmp_path):
     b = batch(path)
-    exe = c_harness.build_host(b, tmp_path, exact_limits=exact_limits)
+    exact_limits, defines = BUILD_LIMITS[limits]
+    exe = c_harness.build_host(b, tmp_path, exact_limits=exact_limits, defines=defines)
     traces, info = c_harness.parse(c_harness.run_host(exe))
     assert mismatches(b, traces, info, passes=(0, 1)) == []
 

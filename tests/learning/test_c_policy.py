@@ -1,7 +1,8 @@
 """The learned selection policy: the C VM with svl_policy as its chooser makes the same choices
 and ends with the same parameters as the Python VM with LearnedPolicy, for the same seeds and
 rewards (integer fixed point, so bit for bit), on the host and on the ATmega328P (simavr).
-Every run also saves the parameters half way and reloads them into a fresh policy."""
+Every run also saves the parameters half way and reloads them into a fresh policy. On the AVR
+the runs' images are in flash, RAM and EEPROM (the policy reads them through the VM's accessors)."""
 
 import pytest
 
@@ -65,7 +66,9 @@ def python_run(image, seed, beta, rate, shift, steps):
 HOST_RUNS = [(FORAGER, 1, 256, q16(0.1), 4, 1500), (FORAGER, 77, 1024, q16(0.5), 2, 1500),
              (FORAGER, 0, 64, q16(0.02), 0, 800), (CORPUS / "network_worker.yaml", 5, 512, q16(0.2), 3, 1500),
              (CORPUS / "hitl_leader.yaml", 9, 256, q16(0.3), 4, 1500)]
-AVR_RUNS = [(FORAGER, 3, 512, q16(0.2), 4, 600), (CORPUS / "hitl_leader.yaml", 12, 256, q16(0.3), 4, 1200)]
+# On the AVR, run k loads its image from flash, RAM, EEPROM (k % 3).
+AVR_RUNS = [(FORAGER, 3, 512, q16(0.2), 4, 600), (FORAGER, 8, 256, q16(0.3), 3, 600),
+            (CORPUS / "hitl_leader.yaml", 12, 256, q16(0.3), 4, 1200)]
 
 
 def write_policy_header(path, runs):
@@ -77,7 +80,7 @@ def write_policy_header(path, runs):
     max_events = max(image.num_events for image in parsed)
     cap = max(len(LearnedPolicy(image).theta) for image in parsed)
     lines = ["#define POLICY_RUNS %d" % len(runs), "#define POLICY_MAX_EVENTS %d" % max_events,
-             "#define POLICY_THETA_CAP %d" % cap,
+             "#define POLICY_THETA_CAP %d" % cap, "#define POLICY_MAX_IMAGE %d" % max(map(len, images)),
              "struct policy_run { uint8_t image; uint16_t image_length; uint32_t seed;",
              "                    uint16_t inv_temp_q8; uint16_t rate_q16; uint8_t shift; uint16_t steps; };"]
     for number, raw in enumerate(images):
@@ -127,7 +130,8 @@ def test_host_c_policy_is_bit_identical_to_python(tmp_path):
 def test_atmega328p_policy_is_bit_identical_to_python(tmp_path):
     images = write_policy_header(tmp_path / "policy_data.h", AVR_RUNS)
     exe = learnbuild.build_avr(tmp_path / "policy.elf", SOURCES, includes=[tmp_path],
-                               defines=["SVM_MAX_EVENTS=32", "SVM_MAX_SUPERVISORS=8"])
+                               defines=["SVM_MAX_EVENTS=32", "SVM_MAX_SUPERVISORS=8", "POLICY_ALL_SOURCES",
+                                        "SVM_IMAGE_SOURCES=SVM_ANY_SOURCE"])
     assert check_identity(learnbuild.run_simavr(exe), AVR_RUNS, images) > 500
 
 

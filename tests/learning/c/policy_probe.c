@@ -4,6 +4,8 @@
  * the chosen event, save the parameters half way and load them into a fresh policy (the flat
  * array round trip), make uncontrollable events occur at random, and print the chosen events ("C<k> hh hh ...", ff = none) and the final
  * saved array ("P<k> ..."). tests/learning/test_c_policy.py runs the same with the Python VM.
+ * With -DPOLICY_ALL_SOURCES (AVR, SVM_IMAGE_SOURCES = SVM_ANY_SOURCE) run k loads its image
+ * from flash, RAM or EEPROM (k % 3), so the policy reads the image wherever it lives.
  */
 #include "swarmvm.h"
 #include "swarmvm_learn.h"
@@ -16,6 +18,32 @@ static int32_t theta[POLICY_THETA_CAP];
 static uint32_t words[POLICY_THETA_CAP + SVL_POLICY_HEADER_WORDS + 1];
 static uint8_t chosen;
 static uint32_t inputs;
+
+#if defined(__AVR__) && defined(POLICY_ALL_SOURCES)
+#include <avr/eeprom.h>
+#define EEPROM_IMAGE_AT ((uint8_t *)1)      /* not 0: a null pointer means no image */
+static uint8_t ram_image[POLICY_MAX_IMAGE];
+
+static int load_image(uint8_t run, const uint8_t *image, uint16_t length)
+{
+    uint16_t i;
+    if (run % 3u == 1u) {
+        for (i = 0; i < length; i++) {
+            ram_image[i] = pgm_read_byte(image + i);
+        }
+        return svm_load(&vm, ram_image, length);
+    }
+    if (run % 3u == 2u) {
+        for (i = 0; i < length; i++) {
+            eeprom_update_byte(EEPROM_IMAGE_AT + i, pgm_read_byte(image + i));
+        }
+        return svm_load_E(&vm, EEPROM_IMAGE_AT, length);
+    }
+    return svm_load_P(&vm, image, length);
+}
+#else
+#define load_image(run, image, length) svm_load_P(&vm, (image), (length))
+#endif
 
 /* Uncontrollable events occur at random (about 1 poll in 6), from the probe's own xorshift32
  * so that the VM's generator is left to the policy; actions do nothing. */
@@ -56,7 +84,7 @@ int main(void)
         PROBE_READ(&r, &policy_runs[run], sizeof r);
         PROBE_READ(rewards, policy_rewards[run], sizeof rewards);
         svm_init(&vm);
-        if (svm_load_P(&vm, policy_images[r.image], r.image_length) != SVM_OK) {
+        if (load_image(run, policy_images[r.image], r.image_length) != SVM_OK) {
             probe_puts("load failed\n");
             break;
         }
