@@ -20,32 +20,16 @@ import json
 import re
 import statistics
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
+from step_costs import DEFAULT, STEPS, benchmark_batch, checked_costs
+from conformance import c_harness  # step_costs put tests/ on the path
+from conformance.cases import OPTIONS, SUPERVISORS
+from swarmvm.runtime import RUNTIME_C
 
-from conformance import c_harness  # noqa: E402
-from conformance.cases import OPTIONS, SUPERVISORS, Batch, Run, reference  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.runtime import RUNTIME_C  # noqa: E402
-from swarmvm.script import random_script  # noqa: E402
-
-STEPS = 200
-SEED = 7
-DENSITY = 0.25
-DEFAULT = ("level", "after-inputs", "uniform")
 KILOBOT_VM = ("edge", "if-quiet", "uniform")
 FLASH_ONLY = ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"]    # as the Kilobot Makefile
-
-
-def benchmark_batch(path):
-    compiled = compile_inputs([path])
-    script = tuple(frozenset(r) for r in random_script(compiled.tables, STEPS, SEED, DENSITY))
-    runs = tuple(Run(i, c, p, SEED, 0) for i, c, p in OPTIONS)
-    return Batch(Path(path).stem, path, compiled.image, (script,), runs)
 
 
 def symbol_size(elf, name):
@@ -68,16 +52,7 @@ def measure(batch, workdir):
     """{run index: [cycles per step]}, checked against the reference, and the VM's RAM."""
     elf, _ = c_harness.build_avr(batch, Path(workdir) / batch.name, cycles=True, extra=FLASH_ONLY,
                                  loaded_modes=(c_harness.LOADED_NONE,))
-    traces, info = c_harness.parse(c_harness.run_avr(elf))
-    if not info["end"] or info["error"] is not None:
-        raise SystemExit("%s: harness failed in simavr" % batch.name)
-    for number, run in enumerate(batch.runs):
-        if traces.get((0, number)) != reference(batch, run):
-            raise SystemExit("%s: run %d differs from the reference trace" % (batch.name, number))
-    counts = {}
-    for (pass_, run), cycles in info["cycles"]:
-        counts.setdefault(run, []).append(cycles)
-    return counts, symbol_size(elf, "vm")
+    return checked_costs(batch, c_harness.run_avr(elf)), symbol_size(elf, "vm")
 
 
 def mean_of(batch, counts, options):

@@ -15,46 +15,21 @@ also compared with the Python reference, so a figure is never that of a wrong ru
 
 import argparse
 import json
-import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-
-from conformance import c_harness, qemu_harness  # noqa: E402
-from conformance.cases import OPTIONS, SUPERVISORS, Batch, Run, reference  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.script import random_script  # noqa: E402
-
-STEPS = 200
-SEED = 7
-DENSITY = 0.25
-DEFAULT = ("level", "after-inputs", "uniform")
-
-
-def benchmark_batch(path):
-    compiled = compile_inputs([path])
-    script = tuple(frozenset(r) for r in random_script(compiled.tables, STEPS, SEED, DENSITY))
-    runs = tuple(Run(i, c, p, SEED, 0) for i, c, p in OPTIONS)
-    return Batch(Path(path).stem, path, compiled.image, (script,), runs)
+from step_costs import DEFAULT, DENSITY, SEED, STEPS, benchmark_batch, checked_costs
+from conformance import qemu_harness  # step_costs put tests/ on the path
+from conformance.cases import OPTIONS, SUPERVISORS, Run
 
 
 def measure(batch, workdir):
     """{run index: [instructions per step]} for the flash pass, checked against the reference."""
     elf = qemu_harness.build_qemu(batch, Path(workdir) / batch.name, cycles=True)
     status, output = qemu_harness.run_qemu(elf, icount=True)
-    traces, info = c_harness.parse(output)
-    if status != 0 or not info["end"]:
+    if status != 0:
         raise SystemExit("%s: harness failed in QEMU (exit status %d)" % (batch.name, status))
-    for number, run in enumerate(batch.runs):
-        if traces.get((0, number)) != reference(batch, run):
-            raise SystemExit("%s: run %d differs from the reference trace" % (batch.name, number))
-    counts = {}
-    for (pass_, run), instructions in info["cycles"]:
-        if pass_ == 0:
-            counts.setdefault(run, []).append(instructions)
-    return counts
+    return checked_costs(batch, output)
 
 
 def main():

@@ -12,9 +12,7 @@ import pytest
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference
 from swarmvm.pipeline import compile_inputs
-from swarmvm.render import write_outputs
 from swarmvm.runtime import FIRMWARE
-from swarmvm.targets import generate
 
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

@@ -13,7 +13,7 @@ consistent renaming of the file's states.
 import pytest
 import yaml
 
-from conformance.cases import SUPERVISORS, batch, reference
+from conformance.cases import SUPERVISORS, batch
 
 
 class FileOracle:
