@@ -76,13 +76,15 @@ def test_generated_python_controller_runs_and_is_never_overwritten(tmp_path):
 
 def test_generated_table_modules_import_for_every_corpus_supervisor(tmp_path):
     """Every corpus supervisor (public inputs, empty names, probabilities) gives a table module
-    Python can import, whose constants match the image."""
+    Python can import, whose constants match the image, and whose compiled-in image is the very
+    bytes of the loadable .svm (so compiled-in and loaded runs are the same run)."""
     for path in sorted(CORPUS.glob("*/*.yaml")):
         out = tmp_path / path.stem
         assert CliRunner().invoke(main, ["gen", str(path), "--target", "python", "-o", str(out)]).exit_code == 0
         run = subprocess.run([sys.executable, "-c", "import %s_tables as t, swarmvm_vm as v\n"
                               "i = v.Image.parse(t.IMAGE)\n"
                               "assert [getattr(t, n) for n in t.EVENTS] == list(range(i.num_events))\n"
-                              "assert list(t.EVENTS) == [i.event_name(e) for e in range(i.num_events)]" % path.stem],
+                              "assert list(t.EVENTS) == [i.event_name(e) for e in range(i.num_events)]\n"
+                              "assert t.IMAGE == open('%s.svm', 'rb').read()" % (path.stem, path.stem)],
                              cwd=out, capture_output=True, text=True)
         assert run.returncode == 0, (path.name, run.stderr)
