@@ -23,7 +23,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from step_costs import DEFAULT, STEPS, benchmark_batch, checked_costs
+from step_costs import DEFAULT, STEPS, benchmark_batch, checked_costs, mean_of
 from conformance import c_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS
 from swarmvm.runtime import RUNTIME_C
@@ -53,11 +53,6 @@ def measure(batch, workdir):
     elf, _ = c_harness.build_avr(batch, Path(workdir) / batch.name, cycles=True, extra=FLASH_ONLY,
                                  loaded_modes=(c_harness.LOADED_NONE,))
     return checked_costs(batch, c_harness.run_avr(elf)), symbol_size(elf, "vm")
-
-
-def mean_of(batch, counts, options):
-    return statistics.mean(c for k, run in enumerate(batch.runs)
-                           if (run.inputs, run.control, run.policy) == options for c in counts[k])
 
 
 def main():

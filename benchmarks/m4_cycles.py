@@ -18,9 +18,9 @@ import json
 import tempfile
 from pathlib import Path
 
-from step_costs import DEFAULT, DENSITY, SEED, STEPS, benchmark_batch, checked_costs
+from step_costs import DEFAULT, DENSITY, SEED, STEPS, benchmark_batch, checked_costs, mean_of
 from conformance import qemu_harness  # step_costs put tests/ on the path
-from conformance.cases import OPTIONS, SUPERVISORS, Run
+from conformance.cases import OPTIONS, SUPERVISORS
 
 
 def measure(batch, workdir):
@@ -42,9 +42,8 @@ def main():
             batch = benchmark_batch(path)
             counts = measure(batch, workdir)
             every = [n for run in counts.values() for n in run]
-            default = counts[batch.runs.index(Run(*DEFAULT, SEED, 0))]
             rows.append(dict(supervisor=batch.name, steps=len(every), mean=sum(every) / len(every),
-                             worst=max(every), mean_default=sum(default) / len(default)))
+                             worst=max(every), mean_default=mean_of(batch, counts, DEFAULT)))
     print("Instructions per VM step on the Cortex-M4F (QEMU -icount; %d-step random script, "
           "%d option combinations, image in flash)\n" % (STEPS, len(OPTIONS)))
     print("| supervisor | steps | mean | worst | mean, default options |")

@@ -2,6 +2,7 @@
 every supervisor runs under every option combination, and the rule that a figure only counts
 when its run printed exactly the Python reference trace."""
 
+import statistics
 import sys
 from pathlib import Path
 
@@ -41,3 +42,9 @@ def checked_costs(batch, output):
         if pass_ == 0:
             costs.setdefault(run, []).append(cost)
     return costs
+
+
+def mean_of(batch, costs, options):
+    """Mean cost per step over the runs of one option combination (inputs, control, policy)."""
+    return statistics.mean(c for k, run in enumerate(batch.runs)
+                           if (run.inputs, run.control, run.policy) == options for c in costs[k])

@@ -20,7 +20,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from conformance import c_harness, qemu_harness  # noqa: E402
 from conformance.cases import Batch, Run  # noqa: E402
-from conformance.test_cpp import FLAGS as CPP_FLAGS, runs_text  # noqa: E402
+from conformance.cpp_harness import FLAGS as CPP_FLAGS, runs_text  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.runtime import RUNTIME_CPP  # noqa: E402
 from swarmvm.script import parse_script  # noqa: E402

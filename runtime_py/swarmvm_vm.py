@@ -290,6 +290,7 @@ class VM:
         if check is not None:
             self.checks[index] = check
         self.data[index] = data
+        self._bindings_checked = False
 
     def bind_controller(self, controller):
         """Bind ``on_<event>`` and ``check_<event>`` methods of an object, by event name."""
@@ -310,6 +311,7 @@ class VM:
     def reset(self):
         """Back to the initial states, cleared inputs and counters, generator re-seeded."""
         self.states = list(self.image.sup_initial)
+        self._bindings_checked = False
         self.previous = 0
         self.violations = 0
         self.rng = XorShift32(self.seed)
@@ -364,8 +366,10 @@ class VM:
 
     def step(self):
         """One VM step; returns the events that fired, in order (indices)."""
-        if self.strict and self.unbound_checks():
-            raise UnboundEvents(self.unbound_checks())
+        if self.strict and not self._bindings_checked:
+            if self.unbound_checks():
+                raise UnboundEvents(self.unbound_checks())
+            self._bindings_checked = True
         current = 0
         for event in self.input_order:
             check = self.checks.get(event)

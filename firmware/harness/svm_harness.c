@@ -76,6 +76,14 @@ static void put_uint(uint32_t value)
     svm_put_decimal(svm_harness_putc, value);
 }
 
+/* "@error <code>" (or another tag) and the end of the line: the harness's report of a load. */
+static void put_result(const char *tag, int result)
+{
+    put_str(tag);
+    put_uint((uint32_t)result);
+    svm_harness_putc('\n');
+}
+
 static void put_trace_line(uint16_t step)
 {
     svm_put_trace_line(svm_harness_putc, &vm, step, fired, num_fired);
@@ -147,14 +155,10 @@ static void run_loaded(void)
     ram_image[SVM_CASES_IMAGE_LEN / 2u] ^= 0x01u;
     result = svm_load(&vm, ram_image, SVM_CASES_IMAGE_LEN);
     ram_image[SVM_CASES_IMAGE_LEN / 2u] ^= 0x01u;
-    put_str("@refused ");
-    put_uint((uint32_t)result);
-    svm_harness_putc('\n');
+    put_result("@refused ", result);
     result = svm_load(&vm, ram_image, SVM_CASES_IMAGE_LEN);
     if (result != SVM_OK) {
-        put_str("@error ");
-        put_uint((uint32_t)result);
-        svm_harness_putc('\n');
+        put_result("@error ", result);
         return;
     }
     run_all(1);
@@ -168,9 +172,7 @@ static void run_from_eeprom(void)
     const uint8_t *image = svm_harness_to_eeprom(svm_case_image, SVM_CASES_IMAGE_LEN);
     int result = svm_load_E(&vm, image, SVM_CASES_IMAGE_LEN);
     if (result != SVM_OK) {
-        put_str("@error ");
-        put_uint((uint32_t)result);
-        svm_harness_putc('\n');
+        put_result("@error ", result);
         return;
     }
     run_all(2);
@@ -184,9 +186,8 @@ int svm_harness_run(void)
     svm_set_dispatch(&vm, dispatch);
     result = svm_load_P(&vm, svm_case_image, SVM_CASES_IMAGE_LEN);
     if (result != SVM_OK) {
-        put_str("@error ");
-        put_uint((uint32_t)result);
-        put_str("\n@end\n");
+        put_result("@error ", result);
+        put_str("@end\n");
         return 1;
     }
     run_all(0);

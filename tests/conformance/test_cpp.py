@@ -9,27 +9,11 @@ import subprocess
 import pytest
 
 from conformance.cases import batches, reference
+from conformance.cpp_harness import FLAGS, c_array, runs_text
 from swarmvm.runtime import RUNTIME_CPP, python_vm
 
-FLAGS = ["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 COMPILERS = ("g++", "clang++")
 BATCHES = batches()
-
-
-def c_array(name, data):
-    body = ",".join("0x%02x" % b for b in data)
-    return "const unsigned char %s[] = {%s};\n" % (name, body)
-
-
-def runs_text(batch):
-    """The harness's RUNS file for one batch (format in conformance_harness.cpp)."""
-    lines = ["scripts %d" % len(batch.scripts)]
-    for script in batch.scripts:
-        lines.append("script %d" % len(script))
-        lines.extend(" ".join(str(e) for e in sorted(row)) or "-" for row in script)
-    lines.append("runs %d" % len(batch.runs))
-    lines.extend("%s %s %s %d %d" % (r.inputs, r.control, r.policy, r.seed, r.script) for r in batch.runs)
-    return "\n".join(lines) + "\n"
 
 
 @pytest.fixture(scope="module")
