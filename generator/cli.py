@@ -1,4 +1,4 @@
-"""The ``swarmvm`` command line: check, pack, gen, script, trace, footprint.
+"""The ``swarmvm`` command line: check, pack, gen, script, trace, footprint, synth, equiv, export.
 
 Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on stderr and
 exit status 2, before anything is written."""
@@ -11,9 +11,14 @@ import click
 
 from . import __version__
 from .errors import InputError
-from .pipeline import compile_inputs, compile_spec, load
+from .equiv import compare, format_difference
+from .export import FORMATS, export_files
+from .pipeline import compile_inputs, compile_spec, load, model_name
+from .properties import check_properties, format_report
 from .runtime import python_vm
 from .script import format_script, parse_script, random_script
+from .synth import models_by_name, synthesise
+from .synth_script import read_synth_script
 from .targets import TARGETS, generate
 from .render import write_outputs
 
@@ -54,12 +59,19 @@ def main():
 
 @main.command()
 @click.argument("files", nargs=-1, required=True)
+@click.option("--properties", is_flag=True,
+              help="Also check each set's design: deadlocks, lost control, dead events, ignored inputs, "
+                   "confluence (docs/models.md).")
 @reports_errors
-def check(files):
-    """Validate supervisors (.yaml, .xml) or table images (.svm) and print their sizes.
+def check(files, properties):
+    """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
+    if properties:
+        for path in files:
+            click.echo(format_report(path, check_properties(compile_inputs([path]).model)))
+        return
     rows = []
     for path in files:
         if path.endswith(".svm"):
@@ -212,3 +224,68 @@ def footprint(elfs, json_path, kilobot_flash, kilobot_stack, vm_limit):
         more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
         click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
         sys.exit(1)
+
+
+@main.command()
+@click.argument("models", nargs=-1, required=True)
+@click.option("--script", "script_path", type=click.Path(dir_okay=False),
+              help="Synthesis script (docs/models.md), e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
+@click.option("-e", "--statement", "statements", multiple=True, metavar="STATEMENT",
+              help="A script statement, e.g. 'S = SupC(G, K)' (repeatable; instead of --script).")
+@click.option("--export", "exports", multiple=True, metavar="NAME",
+              help="A result that joins the output set, in order (repeatable; default: the script's export, "
+                   "else every SupC result).")
+@click.option("--minimise", is_flag=True, help="Minimise each output supervisor (libFAUDES StateMin).")
+@click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True)
+@click.option("-o", "--output", required=True,
+              help="yaml: the supervisor.yaml to write; gen: a directory for one .gen per supervisor.")
+@reports_errors
+def synth(models, script_path, statements, exports, minimise, fmt, output):
+    """Synthesise local modular supervisors from plants and specifications (libFAUDES).
+
+    MODELS are automata (.xml, .xmd, .nza, .gen); the script names each by its file stem."""
+    script = read_synth_script(script_path, statements)
+    spec = synthesise(script, models_by_name(models), exports, minimise)
+    name = model_name([output]) if fmt == "yaml" else model_name([script.source])
+    _write_export(compile_spec(spec, [script.source]).model, name, fmt, output, 0)
+
+
+@main.command()
+@click.argument("a")
+@click.argument("b")
+@reports_errors
+def equiv(a, b):
+    """Do supervisor sets A and B have the same events and the same conjunction language?
+
+    A and B are supervisor files, automata, or directories of automata. Exit status 0 when
+    equivalent; 1 with a shortest distinguishing event sequence when not."""
+    difference = compare(compile_inputs([a]).model, compile_inputs([b]).model)
+    click.echo(format_difference(a, b, difference))
+    if difference is not None:
+        sys.exit(1)
+
+
+@main.command()
+@click.argument("inputs", nargs=-1, required=True)
+@click.option("-f", "--format", "fmt", type=click.Choice(FORMATS), required=True)
+@click.option("-o", "--output", required=True, help="yaml: the file to write; gen, dot, svg: a directory.")
+@click.option("--name", help="Stem of the files written (default: the input's file stem).")
+@click.option("--product-limit", default=200, show_default=True, type=click.IntRange(0),
+              help="Draw the product of the supervisors only up to this many states.")
+@reports_errors
+def export(inputs, fmt, output, name, product_limit):
+    """Write a supervisor set as Nadzoru 2 YAML (canonical), libFAUDES .gen, or Graphviz pictures."""
+    compiled = compile_inputs(inputs, name=name)
+    _warn(compiled)
+    _write_export(compiled.model, compiled.name, fmt, output, product_limit)
+
+
+def _write_export(model, name, fmt, output, product_limit):
+    files = export_files(model, name, fmt, product_limit)
+    if fmt == "yaml":
+        directory, base = os.path.split(os.path.abspath(output))
+        files = {base: files[name + ".yaml"]}
+    else:
+        directory = output
+    for path in write_outputs(directory, {rel: (data, False) for rel, data in files.items()}):
+        click.echo(path)

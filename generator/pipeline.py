@@ -21,10 +21,26 @@ class Compiled:
     image: bytes
 
 
+def expand_directories(paths):
+    """Each directory among ``paths`` replaced by the automaton files in it, in natural order
+    (``x_2.gen`` before ``x_10.gen``): ``swarmvm export --format gen`` writes a set that way."""
+    out = []
+    for path in paths:
+        if not os.path.isdir(path):
+            out.append(path)
+            continue
+        found = [os.path.join(path, f) for f in os.listdir(path) if os.path.splitext(f)[1].lower() in SUFFIXES]
+        if not found:
+            raise InputError(path, "", "directory holds no automata (%s)" % ", ".join(SUFFIXES))
+        out.extend(sorted(found, key=lambda f: [int(p) if p.isdigit() else p for p in re.split(r"(\d+)", f)]))
+    return out
+
+
 def load(paths):
     """One supervisor.yaml, or one or more automata (Nadzoru 2 ``.xml``, IDES ``.xmd``, Nadzoru
-    ``.nza``, libFAUDES ``.gen``; one local supervisor each), chosen by file extension."""
-    paths = list(paths)
+    ``.nza``, libFAUDES ``.gen``; one local supervisor each, chosen by file extension; a
+    directory stands for the automata in it)."""
+    paths = expand_directories(paths)
     automata = [p for p in paths if os.path.splitext(p)[1].lower() in SUFFIXES]
     if automata and len(automata) != len(paths):
         raise InputError(paths[0], "", "give either one supervisor.yaml or automata (%s), not both" % ", ".join(SUFFIXES))
