@@ -23,7 +23,7 @@ from .synth_script import Step, SynthScript
 def _self_looped(system: "faudes.System", other: "faudes.System") -> "faudes.System":
     """``system`` extended by the events of ``other`` it lacks, each a self-loop in every state
     and controllable as in ``other``."""
-    _, alphabet, _, _, _, _ = system.ToLists()
+    _, alphabet, own_controllable, _, _, _ = system.ToLists()
     _, others, controllable, _, _, _ = other.ToLists()
     missing = sorted(set(others) - set(alphabet))
     if not missing:
@@ -32,10 +32,9 @@ def _self_looped(system: "faudes.System", other: "faudes.System") -> "faudes.Sys
     names = faudes.EventSet()
     for name in missing:
         names.Insert(name)
-    extended.InsEvents(names)
-    for name in set(missing) & set(controllable):
+    faudes.SelfLoop(extended, names)          # (libFAUDES drops the event flags here: set them again)
+    for name in set(own_controllable) | (set(missing) & set(controllable)):
         extended.SetControllable(name)
-    faudes.SelfLoop(extended, names)
     return extended
 
 
