@@ -1,7 +1,7 @@
 """Write a canonical supervisor set back out: Nadzoru 2's ``supervisor.yaml`` (events sorted by
 name, states breadth-first, so two exports of one model are byte-identical) and libFAUDES'
 token format (one ``.gen`` per local supervisor, every state marked: a supervisor's language
-is closed). Both read back into an equivalent set (tests/models/test_export.py)."""
+is closed; public events in a ``% swarmvm public:`` comment, as libFAUDES has no such flag). Both read back into an equivalent set (tests/models/test_export.py)."""
 
 from fractions import Fraction
 from typing import Dict, List
@@ -67,9 +67,11 @@ def to_gen(model: Model, sup: int, name: str) -> str:
     states = " ".join(_quote("s%d" % q) for q in range(len(local.states)))
     trans = ["%s %s %s" % (_quote("s%d" % q), _quote(model.events[e]), _quote("s%d" % t))
              for q, row in enumerate(local.states) for e, t, _ in row]
+    public = [_quote(model.events[e]) for e in sorted(local.alphabet) if model.public[e]]
     return "\n".join([
         '<Generator name=%s ftype="System">' % _quote(name),
         "% " + "written by swarmvm from %s, supervisor %d; every state is marked" % (model.source, sup),
+        *(["% swarmvm public: " + " ".join(public)] if public else []),
         "<Alphabet>", *alphabet, "</Alphabet>",
         "<States>", states, "</States>",
         "<TransRel>", *trans, "</TransRel>",

@@ -9,9 +9,10 @@
     </Generator>
 
 ``%`` starts a comment; names may be quoted; a number names a state by its index. Other
-attribute flags (``+o+``, ``+F+``, ...) are accepted and ignored. The format has no public
-flag: every event read from a ``.gen`` file is private. Exactly one initial state is
-required (a supervisor starts somewhere definite)."""
+attribute flags (``+o+``, ``+F+``, ...) are accepted and ignored. libFAUDES has no public
+flag; swarmvm writes its public events in a comment libFAUDES skips, ``% swarmvm public: a b``,
+and reads it back (without it every event is private). Exactly one initial state is required
+(a supervisor starts somewhere definite)."""
 
 import re
 from typing import List, Tuple
@@ -27,6 +28,7 @@ TOKEN = re.compile(r"""
   | (?P<word>[^\s<>"%+]+)
 """, re.VERBOSE)
 SECTIONS = ("Alphabet", "States", "TransRel", "InitStates", "MarkedStates")
+PUBLIC = re.compile(r"^[ \t]*% swarmvm public:(.*)$", re.MULTILINE)
 
 
 def _tokens(path: str, text: str) -> List[Tuple[str, str, int]]:
@@ -103,13 +105,16 @@ def load_gen(path: str) -> AutomatonFile:
     body = _sections(path, _tokens(path, text))
     build = AutomatonBuilder(path)
     alphabet = body.get("Alphabet", [])
+    public = {name.strip('"') for line in PUBLIC.findall(text) for name in line.split()}
+    for name in sorted(public - {value for kind, value, _ in alphabet if kind == "word"}):
+        raise InputError(path, "swarmvm public", "event %s is not in the Alphabet" % name)
     for i, (kind, value, line) in enumerate(alphabet):
         if kind == "attr":
             continue
         if kind != "word":
             raise InputError(path, "Alphabet", "unexpected %r" % value, "line %d" % line)
         flags = alphabet[i + 1][1] if i + 1 < len(alphabet) and alphabet[i + 1][0] == "attr" else ""
-        build.event(value, value, "C" in flags, key="Alphabet")
+        build.event(value, value, "C" in flags, value in public, key="Alphabet")
     initial = set(_names(path, "InitStates", body.get("InitStates", [])))
     if len(initial) > 1:
         raise InputError(path, "InitStates", "%d initial states; a supervisor has one" % len(initial))

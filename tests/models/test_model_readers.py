@@ -98,6 +98,8 @@ MALFORMED = [
     ("gen", "<Generator> <Alphabet> a.b </Alphabet> </Generator>",
      "Alphabet: event a.b: 'a.b' is not an event name (letters, digits and '_')"),
     ("gen", "<Generator> <States> 1 </States> </Generator>", "InitStates: no initial state"),
+    ("gen", "<Generator>\n% swarmvm public: z\n<Alphabet> a </Alphabet> </Generator>",
+     "swarmvm public: event z is not in the Alphabet"),
 ]
 
 
