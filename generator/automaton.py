@@ -14,7 +14,7 @@ import defusedxml.ElementTree as SafeET
 from defusedxml import DefusedXmlException
 from xml.etree.ElementTree import Element, ParseError
 
-from .errors import InputError
+from .errors import InputError, read_input
 from .load_supervisor import NAME
 from .model import LocalSupervisor, Transition
 
@@ -103,3 +103,16 @@ def parse_xml(path: str, raw: bytes) -> Element:
         raise InputError(path, "", "not valid XML: %s" % exc)
     except DefusedXmlException:
         raise InputError(path, "", "a DOCTYPE or entity declaration is not accepted")
+
+
+def read_fsa_xml(path: str) -> Tuple[Element, int]:
+    """The ``<data>`` element of an XML ``<model type="FSA">`` file and the file's size: the
+    frame Nadzoru 2 and IDES share."""
+    raw = read_input(path)
+    root = parse_xml(path, raw)
+    if root.tag != "model" or root.get("type") != "FSA":
+        raise InputError(path, "model", "expected <model type=\"FSA\"> at the top, got <%s>" % root.tag)
+    data = root.find("data")
+    if data is None:
+        raise InputError(path, "data", "missing <data> element")
+    return data, len(raw)

@@ -8,8 +8,8 @@ attribute on transitions makes the set probabilistic (as Nadzoru 2's probabilist
 import os
 from fractions import Fraction
 
-from .automaton import AutomatonBuilder, parse_xml
-from .errors import InputError, read_input
+from .automaton import AutomatonBuilder, read_fsa_xml
+from .errors import InputError
 from .load_supervisor import NAME
 from .model import Supervisors
 from .read_gen import load_gen
@@ -39,13 +39,7 @@ def _int_attr(path, element, attribute, where):
 
 def load_automaton(path):
     """One Nadzoru 2 XML file -> :class:`~swarmvm.automaton.AutomatonFile`."""
-    raw = read_input(path)
-    root = parse_xml(path, raw)
-    if root.tag != "model" or root.get("type") != "FSA":
-        raise InputError(path, "model", "expected <model type=\"FSA\"> at the top, got <%s>" % root.tag)
-    data = root.find("data")
-    if data is None:
-        raise InputError(path, "data", "missing <data> element")
+    data, size = read_fsa_xml(path)
 
     build = AutomatonBuilder(path)
     for element in data.findall("state"):
@@ -72,7 +66,7 @@ def load_automaton(path):
                 raise InputError(path, "probability", "%r is not a probability in [0, 1]" % element.get("probability"),
                                  "state %d" % source)
         build.transition(source, eid, target, probability)
-    return build.build(len(raw))
+    return build.build(size)
 
 
 def read_automaton(path):

@@ -5,8 +5,8 @@ and ``<transition>`` elements; a state's or event's flags are empty elements ins
 IDES has no public flag (every event is private) and allows a transition without an event,
 which swarmvm refuses: a supervisor has no silent moves. Layout (``<meta>``) is ignored."""
 
-from .automaton import AutomatonBuilder, AutomatonFile, parse_xml
-from .errors import InputError, read_input
+from .automaton import AutomatonBuilder, AutomatonFile, read_fsa_xml
+from .errors import InputError
 
 
 def _properties(element):
@@ -23,13 +23,7 @@ def _id(path, element, attribute, key):
 
 def load_xmd(path: str) -> AutomatonFile:
     """One IDES ``.xmd`` file -> :class:`~swarmvm.automaton.AutomatonFile`."""
-    raw = read_input(path)
-    root = parse_xml(path, raw)
-    if root.tag != "model" or root.get("type") != "FSA":
-        raise InputError(path, "model", "expected <model type=\"FSA\"> at the top, got <%s>" % root.tag)
-    data = root.find("data")
-    if data is None:
-        raise InputError(path, "data", "missing <data> element")
+    data, size = read_fsa_xml(path)
     build = AutomatonBuilder(path)
     for element in data.findall("state"):
         props = _properties(element)
@@ -43,4 +37,4 @@ def load_xmd(path: str) -> AutomatonFile:
             raise InputError(path, "transition", "a transition without an event is not supported",
                              "transition %s" % element.get("id", "?"))
         build.transition(source, element.get("event").strip(), _id(path, element, "target", "transition"))
-    return build.build(len(raw))
+    return build.build(size)
