@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
 from .model import Model
-from .product import Vector, step
+from .product import Conjunction, Vector
 
 
 @dataclass(frozen=True)
@@ -39,13 +39,14 @@ def compare(a: Model, b: Model) -> Optional[Difference]:
             what = "controllable" if fa[name][0] != fb[name][0] else "public"
             return Difference(events=(name,), reason="EV_%s is %s in one set only" % (name, what))
     # Same names, and canonical models sort them: the event indices agree.
+    ca, cb = Conjunction(a), Conjunction(b)
     start = (tuple(0 for _ in a.supervisors), tuple(0 for _ in b.supervisors))
     seen = {start: None}
     queue = deque([start])
     while queue:
         pair = queue.popleft()
         for event in range(len(a.events)):
-            na, nb = step(a, pair[0], event), step(b, pair[1], event)
+            na, nb = ca.step(pair[0], event), cb.step(pair[1], event)
             if (na is None) != (nb is None):
                 word = _word(seen, pair) + [event]
                 return Difference(word=tuple(a.events[e] for e in word), allowed_by="A" if nb is None else "B",

@@ -34,20 +34,29 @@ class Product:
         return out[::-1]
 
 
-def step(model: Model, vector: Vector, event: int) -> Optional[Vector]:
-    """The product state after ``event``, or None if some supervisor holding it blocks it."""
-    out = list(vector)
-    for s, sup in enumerate(model.supervisors):
-        if event in sup.alphabet:
-            target = next((t for e, t, _ in sup.states[vector[s]] if e == event), None)
+class Conjunction:
+    """The product's transition function, with each supervisor's transitions indexed once."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self.holders = [[s for s, sup in enumerate(model.supervisors) if e in sup.alphabet]
+                        for e in range(len(model.events))]
+        self.delta = [[{e: t for e, t, _ in row} for row in sup.states] for sup in model.supervisors]
+
+    def step(self, vector: Vector, event: int) -> Optional[Vector]:
+        """The product state after ``event``, or None if some supervisor holding it blocks it."""
+        out = list(vector)
+        for s in self.holders[event]:
+            target = self.delta[s][vector[s]].get(event)
             if target is None:
                 return None
             out[s] = target
-    return tuple(out)
+        return tuple(out)
 
 
 def build_product(model: Model, limit: int = 1_000_000) -> Product:
     """The reachable product; InputError when it has more than ``limit`` states."""
+    conjunction = Conjunction(model)
     start = tuple(0 for _ in model.supervisors)
     number: Dict[Vector, int] = {start: 0}
     vectors, edges, parent = [start], [], [None]
@@ -56,7 +65,7 @@ def build_product(model: Model, limit: int = 1_000_000) -> Product:
         vector = queue.popleft()
         row = []
         for event in range(len(model.events)):
-            target = step(model, vector, event)
+            target = conjunction.step(vector, event)
             if target is None:
                 continue
             if target not in number:

@@ -67,7 +67,8 @@ def test_the_energy_worker_is_clean_and_the_cli_prints_every_check():
 
 
 def test_the_corpus_reports_what_its_models_hold():
-    found = {p.stem: {c: len(report(p).of(c)) for c in CHECKS} for p in SUPERVISORS}
+    reports = {p.stem: report(p) for p in SUPERVISORS}
+    found = {name: {c: len(r.of(c)) for c in CHECKS} for name, r in reports.items()}
     clean = {c: 0 for c in CHECKS}
     for name in ("energy_worker", "energy_worker_mc", "energy_charger", "uav", "network_leader", "hitl_leader",
                  "capbot_demo", "public_example"):
