@@ -13,7 +13,7 @@ from . import __version__
 from .errors import InputError
 from .equiv import compare, format_difference
 from .export import FORMATS, export_files
-from .pipeline import compile_inputs, compile_spec, load, model_name
+from .pipeline import compile_inputs, compile_spec, load
 from .properties import check_properties, format_report
 from .runtime import python_vm
 from .script import format_script, parse_script, random_script
@@ -70,7 +70,9 @@ def check(files, properties):
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
     if properties:
         for path in files:
-            click.echo(format_report(path, check_properties(compile_inputs([path]).model)))
+            compiled = compile_inputs([path])
+            _warn(compiled)
+            click.echo(format_report(path, check_properties(compiled.model)))
         return
     rows = []
     for path in files:
@@ -246,8 +248,9 @@ def synth(models, script_path, statements, exports, minimise, fmt, output):
     MODELS are automata (.xml, .xmd, .nza, .gen); the script names each by its file stem."""
     script = read_synth_script(script_path, statements)
     spec = synthesise(script, models_by_name(models), exports, minimise)
-    name = model_name([output]) if fmt == "yaml" else model_name([script.source])
-    _write_export(compile_spec(spec, [script.source]).model, name, fmt, output, 0)
+    compiled = compile_spec(spec, [output])
+    _warn(compiled)
+    _write_export(compiled.model, compiled.name, fmt, output, 0)
 
 
 @main.command()

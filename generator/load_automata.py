@@ -72,7 +72,10 @@ def load_automaton(path):
 def read_automaton(path):
     """Any one-automaton file, by its extension -> :class:`~swarmvm.automaton.AutomatonFile`."""
     readers = {".xml": load_automaton, ".xmd": load_xmd, ".nza": load_nza, ".gen": load_gen}
-    return readers[os.path.splitext(path)[1].lower()](path)
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in readers:
+        raise InputError(path, "", "not an automaton file (%s)" % ", ".join(SUFFIXES))
+    return readers[suffix](path)
 
 
 def load_automata(paths):

@@ -29,7 +29,7 @@ class LuaSyntaxError(ValueError):
 
     def __init__(self, line: int, message: str):
         super().__init__("line %d: %s" % (line, message))
-        self.line = line
+        self.line, self.message = line, message
 
 
 def _unescape(body: str, line: int) -> str:

@@ -44,7 +44,7 @@ def load_nza(path: str) -> AutomatonFile:
     except UnicodeDecodeError as exc:
         raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
     except LuaSyntaxError as exc:
-        raise InputError(path, "", "not a Lua table literal: %s" % exc)
+        raise InputError(path, "", "not a Lua table literal: %s" % exc.message, "line %d" % exc.line)
     states, events = _list(path, table, "states"), _list(path, table, "events")
     build = AutomatonBuilder(path)
     for i, entry in enumerate(states, 1):

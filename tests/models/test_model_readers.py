@@ -52,13 +52,13 @@ def test_several_files_of_mixed_formats_form_one_set(tmp_path):
 NZA_G = '{ ["states"] = { [1] = { ["initial"] = true, ["marked"] = true } }, ["events"] = { [1] = { ["name"] = "a", ["controllable"] = true } }, ["transitions"] = { [1] = { ["source"] = 1, ["target"] = 1, ["event"] = 1 } } }'
 XMD_HEAD = '<?xml version="1.0" encoding="UTF-8"?>\n'
 MALFORMED = [
-    ("nza", 'os.execute("rm -rf /")', "not a Lua table literal: line 1: unexpected character '.'"),
-    ("nza", 'print("x")', "not a Lua table literal: line 1: unexpected character '('"),
-    ("nza", 'x', "not a Lua table literal: line 1: expected a table constructor '{', found 'x'"),
-    ("nza", '{ ["states"] = loadstring }', "not a Lua table literal: line 1: expected a value, found 'loadstring'"),
-    ("nza", "{ a = 1,\n b = 2 + 3 }", "not a Lua table literal: line 2: unexpected character '+'"),
-    ("nza", '{ ["states"] = { [1] = { ["initial"] = true } }', "not a Lua table literal: line 1: expected ',' or '}', found 'end of file'"),
-    ("nza", '{ a = 1, a = 2 }', "not a Lua table literal: line 1: key 'a' is nil or given twice"),
+    ("nza", 'os.execute("rm -rf /")', "line 1: not a Lua table literal: unexpected character '.'"),
+    ("nza", 'print("x")', "line 1: not a Lua table literal: unexpected character '('"),
+    ("nza", 'x', "line 1: not a Lua table literal: expected a table constructor '{', found 'x'"),
+    ("nza", '{ ["states"] = loadstring }', "line 1: not a Lua table literal: expected a value, found 'loadstring'"),
+    ("nza", "{ a = 1,\n b = 2 + 3 }", "line 2: not a Lua table literal: unexpected character '+'"),
+    ("nza", '{ ["states"] = { [1] = { ["initial"] = true } }', "line 1: not a Lua table literal: expected ',' or '}', found 'end of file'"),
+    ("nza", '{ a = 1, a = 2 }', "line 1: not a Lua table literal: key 'a' is nil or given twice"),
     ("nza", NZA_G.replace('["target"] = 1', '["target"] = 2'), "transitions[1].target: expected an index in 1..1, got 2"),
     ("nza", NZA_G.replace('["initial"] = true', '["initial"] = 1'), "states[1].initial: expected true or false, got 1"),
     ("nza", NZA_G.replace('"a"', '"a b"'), "events[1]: event 1: 'a b' is not an event name (letters, digits and '_')"),

@@ -138,3 +138,9 @@ def test_script_comments_prints_and_exports_are_read_as_data():
     assert [(s.target, s.op, s.args) for s in script.steps] == [
         ("A", "sync", ("G1", "G2")), ("B", "supc", ("A", "A")), ("B", "min", ("B",))]
     assert script.exports == ("B",)
+
+
+def test_a_compiled_supervisor_is_not_a_model(tmp_path):
+    result = run("synth", "-e", "S = SupC(energy_worker, energy_worker)", ENERGY_WORKER, "-o", tmp_path / "s.yaml")
+    assert result.exit_code == 2
+    assert result.stderr == "swarmvm: error: %s: not an automaton file (.xml, .xmd, .nza, .gen)\n" % ENERGY_WORKER
