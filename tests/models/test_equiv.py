@@ -8,7 +8,7 @@ from dataclasses import replace
 import faudes
 import pytest
 
-from conftest import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
+from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
 from swarmvm.equiv import compare
 from swarmvm.pipeline import compile_inputs
 from swarmvm.product import Conjunction

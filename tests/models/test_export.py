@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import faudes
 import pytest
 
-from conftest import ENERGY_WORKER, SUPERVISORS, conjunction, run
+from models.model_cases import ENERGY_WORKER, SUPERVISORS, conjunction, run
 from swarmvm.faudes_bridge import system_from_model
 from swarmvm.pipeline import compile_inputs
 
@@ -101,7 +101,7 @@ def test_pictures_are_deterministic(tmp_path):
 
 
 def test_synthesis_output_as_gen_is_the_same_set(tmp_path):
-    from conftest import SYNTHESIS
+    from models.model_cases import SYNTHESIS
     result = run("synth", "--script", SYNTHESIS / "script.txt", *sorted(SYNTHESIS.glob("[GE]?.xml")),
                  "-f", "gen", "-o", tmp_path)
     assert result.exit_code == 0 and len(result.stdout.split()) == 4

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import SYNTHESIS, run
+from models.model_cases import SYNTHESIS, run
 from swarmvm.lua_literal import LuaSyntaxError, parse_lua_table
 from swarmvm.pipeline import compile_inputs
 

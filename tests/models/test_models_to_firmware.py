@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from conftest import ENERGY_WORKER, SYNTHESIS, run
+from models.model_cases import ENERGY_WORKER, SYNTHESIS, run
 from swarmvm.pipeline import compile_inputs
 
 

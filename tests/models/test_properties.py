@@ -3,7 +3,7 @@ it, stays quiet on the same set mended, and reports on the whole corpus."""
 
 import pytest
 
-from conftest import CORPUS, ENERGY_WORKER, SUPERVISORS, run
+from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, run
 from swarmvm.pipeline import compile_inputs
 from swarmvm.properties import CHECKS, check_properties
 

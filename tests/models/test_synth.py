@@ -8,7 +8,7 @@ import random
 import faudes
 import pytest
 
-from conftest import ENERGY_WORKER, SYNTHESIS, conjunction, run
+from models.model_cases import ENERGY_WORKER, SYNTHESIS, conjunction, run
 from swarmvm.faudes_bridge import system_from_local
 from swarmvm.load_automata import load_automata
 from swarmvm.pipeline import compile_inputs, compile_spec
