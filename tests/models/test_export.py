@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import faudes
 import pytest
 
-from models.model_cases import ENERGY_WORKER, SUPERVISORS, conjunction, run
+from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
 from swarmvm.faudes_bridge import system_from_model
 from swarmvm.pipeline import compile_inputs
 
@@ -107,3 +107,10 @@ def test_synthesis_output_as_gen_is_the_same_set(tmp_path):
     assert result.exit_code == 0 and len(result.stdout.split()) == 4
     assert run("equiv", tmp_path, ENERGY_WORKER).exit_code == 0
     assert faudes.LanguageEquality(conjunction(model(tmp_path)), conjunction(model(ENERGY_WORKER)))
+
+
+def test_yaml_export_is_what_nadzoru_2_writes(tmp_path):
+    # public_example.yaml was written by Nadzoru 2's own generator, already in canonical order.
+    original = CORPUS / "nadzoru2" / "public_example.yaml"
+    assert run("export", original, "-f", "yaml", "-o", tmp_path / "p.yaml").exit_code == 0
+    assert (tmp_path / "p.yaml").read_text() == original.read_text() + "\n"
