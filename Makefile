@@ -1,16 +1,18 @@
 # swarmvm: `make demo` runs the main job on the bundled example, `make test` the test suite.
-# Both run `make setup` first (Debian packages and `pip install -e .[test]`, idempotent).
+# Both run `make setup` first (scripts/setup.sh: Debian packages, then the project's own venv
+# .venv/ with `pip install -e .[test]`; idempotent). Every rule runs Python and the CLI from it.
 # Per-area rules (firmware images, emulator runs, benchmarks) live in mk/*.mk.
 
-PYTHON ?= python3
-SWARMVM ?= swarmvm
+VENV ?= .venv
+PYTHON ?= $(VENV)/bin/python
+SWARMVM ?= $(VENV)/bin/swarmvm
 BUILD ?= build
 EXAMPLE ?= examples/energy_worker/supervisor.yaml
 
 .PHONY: setup test demo bench gen firmware footprint clean
 
 setup:
-	@scripts/setup.sh
+	@VENV=$(VENV) scripts/setup.sh
 
 test: setup
 	$(PYTHON) -m pytest tests

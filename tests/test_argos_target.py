@@ -9,8 +9,9 @@ from pathlib import Path
 
 import pytest
 
+from swarmvm.naming import message_code, message_name
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import FIRMWARE, ROOT
+from checkout import FIRMWARE, ROOT
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
 SUPERVISORS = ("energy_worker", "network_worker")
@@ -55,7 +56,8 @@ def test_one_stub_per_event_and_messages_by_name(generated):
         kind = "set_action" if model.controllable[index] else "set_check"
         assert '%s("%s"' % (kind, const) in source, const
         if model.public[index]:
-            assert 'message_code("%s")' % event.lstrip("_") in source, const
+            message = message_name(event, model.controllable[index])
+            assert '%du /* "%s" */' % (message_code(message), message) in source, const
     assert "SetLinearVelocity" in source
     assert 'GetNode(t_node, "SCT"), "path"' in source
     assert 'REGISTER_CONTROLLER(C%sController, "%s_controller")' % (

@@ -12,7 +12,7 @@ import pytest
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import FIRMWARE
+from checkout import FIRMWARE
 
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
@@ -168,10 +168,10 @@ void kilo_start(void (*setup)(void), void (*loop)(void))
     memcpy(in.data, "exchange", 8);
     in.type = NORMAL;
     kilo_message_rx(&in, &d);
-    first = nw_check__exchange();
-    second = nw_check__exchange();
+    first = nw_check_received_exchange();
+    second = nw_check_received_exchange();
     printf("exchange %u %u\n", first, second);
-    printf("message %u\n", nw_check__message());
+    printf("message %u\n", nw_check_received_message());
     printf("idle_tx %u\n", kilo_message_tx() == 0);
     nw_send(EV_relay);
     out = kilo_message_tx();

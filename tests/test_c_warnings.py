@@ -10,7 +10,8 @@ import pytest
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, batch
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import FIRMWARE, RUNTIME_C
+from swarmvm.runtime import RUNTIME_C
+from checkout import FIRMWARE
 from swarmvm.targets import generate
 
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

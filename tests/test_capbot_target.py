@@ -13,7 +13,8 @@ import pytest
 
 from conformance import qemu_harness
 from conformance.cases import SUPERVISORS
-from swarmvm.runtime import ROOT, python_vm
+from swarmvm.runtime import python_vm
+from checkout import ROOT
 
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
@@ -22,8 +23,8 @@ ENV_SEED = 2024         # firmware/capbot/app_qemu.c: ENV_SEED
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
                   "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
-                  "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/logic_page.h",
-                  "src/logic_page.c"}
+                  "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/swarmvm_logic_page.h",
+                  "src/swarmvm_logic_page.c"}
 
 
 def gen(model, outdir, name="energy_worker"):

@@ -67,7 +67,7 @@ def test_generated_python_controller_runs_and_is_never_overwritten(tmp_path):
     controller.write_text(edited)
     assert CliRunner().invoke(main, args).exit_code == 0
     assert controller.read_text() == edited
-    run = subprocess.run([sys.executable, "-c", "import uav_controller as c\nvm = c.make_vm()\n"
+    run = subprocess.run([sys.executable, "-c", "import uav_app as c\nvm = c.make_vm()\n"
                           "print([vm.image.event_name(e) for e in vm.step()])"],
                          cwd=tmp_path, capture_output=True, text=True)
     assert run.returncode == 0, run.stderr

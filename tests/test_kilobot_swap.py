@@ -13,7 +13,7 @@ from kilobot_stream_demo import CORPUS, STRICT, SUPERVISOR_A, SUPERVISOR_B, Prog
 from swarmvm.image import chunks
 from swarmvm.pipeline import compile_inputs
 from swarmvm.render import write_outputs
-from swarmvm.runtime import FIRMWARE
+from checkout import FIRMWARE
 from swarmvm.targets import generate
 
 SVM_ERR_CRC, SVM_ERR_NAMES = 4, 7

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm.runtime import ROOT
+from checkout import ROOT
 
 SUPERVISOR = ROOT / "tests" / "corpus" / "openswarm" / "capbot_demo.yaml"
 STEPS = 20
@@ -21,7 +21,7 @@ def gen(outdir):
 
 
 def controller(outdir, *args, env=None):
-    return subprocess.run([sys.executable, "-m", "capbot_demo_controller"] + list(args), cwd=str(outdir),
+    return subprocess.run([sys.executable, "-m", "capbot_demo_app"] + list(args), cwd=str(outdir),
                           capture_output=True, text=True, env=env)
 
 
@@ -59,7 +59,7 @@ def test_sim_runs_for_the_given_steps_without_a_script(out):
 
 
 def test_hardware_library_is_imported_lazily(out):
-    probe = "import sys, capbot_demo_controller; print('pipuck' in sys.modules, 'smbus' in sys.modules)"
+    probe = "import sys, capbot_demo_app; print('pipuck' in sys.modules, 'smbus' in sys.modules)"
     result = subprocess.run([sys.executable, "-c", probe], cwd=str(out), capture_output=True, text=True)
     assert result.stdout.split() == ["False", "False"], result.stderr
     result = controller(out, "--steps", "1")

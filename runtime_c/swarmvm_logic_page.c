@@ -1,5 +1,5 @@
-/* The control-logic flash page (logic_page.h). */
-#include "logic_page.h"
+/* The control-logic flash page (swarmvm_logic_page.h). */
+#include "swarmvm_logic_page.h"
 
 #ifdef SVM_LOGIC_PAGE_ADDRESS
 #define PAGE_START ((const uint8_t *)(uintptr_t)(SVM_LOGIC_PAGE_ADDRESS))

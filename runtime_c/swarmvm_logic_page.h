@@ -13,8 +13,8 @@
  * page that holds no runnable image (empty, erased, damaged, wrong version, over the build's
  * SVM_MAX_* limits) is refused with its SVM_ERR_* code and the VM keeps the compiled-in logic.
  */
-#ifndef LOGIC_PAGE_H
-#define LOGIC_PAGE_H
+#ifndef SWARMVM_LOGIC_PAGE_H
+#define SWARMVM_LOGIC_PAGE_H
 
 #include <stdint.h>
 
@@ -41,4 +41,4 @@ int svm_logic_page_validate(void);
  * controller's dispatch is written for the compiled-in events. */
 int svm_logic_page_load(svm_vm_t *vm, const uint8_t *compiled, uint16_t compiled_length, uint8_t *to_compiled);
 
-#endif /* LOGIC_PAGE_H */
+#endif /* SWARMVM_LOGIC_PAGE_H */
