@@ -6,7 +6,7 @@ naming file, key and place); nothing here writes a file unless its name says so.
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator, Sequence
+from typing import TYPE_CHECKING, Iterator, Sequence
 
 from . import footprint as fp
 from .errors import InputError, read_input
@@ -21,8 +21,10 @@ __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check
            "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "make_script", "trace",
            "measure_footprint", "TARGETS"]
 
+if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
+    from runtime_py.swarmvm_vm import Image
+
 _vm = python_vm()
-Image = _vm.Image
 
 
 @dataclass(frozen=True)
@@ -45,7 +47,7 @@ def compile_model(inputs: Sequence[str], name: str | None = None, names: bool = 
 def parse_image(data: bytes, source: str = "<image>") -> "Image":
     """A table image from bytes, checked (magic, version, checksum, bounds)."""
     try:
-        return Image.parse(data)
+        return _vm.Image.parse(data)
     except _vm.ImageError as exc:
         raise InputError(source, "image", str(exc))
 
@@ -67,7 +69,8 @@ def check(paths: Sequence[str]) -> tuple[list[CheckRow], list[str]]:
             continue
         spec = load([path])
         warnings += compile_spec(spec, [path]).model.warnings
-        rows.append(CheckRow(name, *spec.counts(), spec.size_bytes))
+        events, supervisors, states, transitions = spec.counts()
+        rows.append(CheckRow(name, events, supervisors, states, transitions, spec.size_bytes))
     return rows, warnings
 
 
@@ -139,7 +142,7 @@ def make_script(inputs: Sequence[str], steps: int, seed: int, density: float = 0
 def _image_of(inputs: Sequence[str]) -> "Image":
     if len(inputs) == 1 and inputs[0].endswith(".svm"):
         return read_image(inputs[0])
-    return Image.parse(compile_model(inputs).image)
+    return _vm.Image.parse(compile_model(inputs).image)
 
 
 def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: str = "level",

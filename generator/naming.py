@@ -84,7 +84,9 @@ class EventNames:
 def event_names(model: Model) -> list[EventNames]:
     """The names of every event, in model order; InputError naming the two events when two
     callbacks or two message codes would be one."""
-    result, stems, codes = [], {}, {}
+    result: list[EventNames] = []
+    stems: dict[str, str] = {}
+    codes: dict[int, str] = {}
     for i, name in enumerate(model.events):
         controllable, public = bool(model.controllable[i]), bool(model.public[i])
         stem = callback_stem(name)

@@ -5,6 +5,7 @@ tables and image are the same for all. A file entry is (template, output name, k
 names may use ``{name}``; ``keep`` marks user-edited files that are never overwritten."""
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 from . import __version__, kilobot
 from .render import context, render
@@ -18,7 +19,7 @@ class Target:
     copies: tuple = field(default=())    # (source path, output name)
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
-    prepare: object = None               # prepare(compiled) -> extra template values; InputError if unfit
+    prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
 
 
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (

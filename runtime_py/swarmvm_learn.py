@@ -419,7 +419,7 @@ class LearnedChecks:
     subclass adds one ``check_<event>`` per event, bound to the VM like any other check.
     ``classifiers`` maps each pair's yes event to its classifier."""
 
-    pairs = ()
+    pairs: tuple = ()
 
     def __init__(self, classifiers):
         missing = [yes for yes, _ in self.pairs if yes not in (classifiers or {})]

@@ -81,7 +81,7 @@ class SimRobot:
 
     def __init__(self, rows=(), log=print):
         self._rows = list(rows)
-        self._row = frozenset()
+        self._row: frozenset = frozenset()
         self._log = log
 
     @staticmethod

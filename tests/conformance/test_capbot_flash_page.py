@@ -21,6 +21,8 @@ from conformance.cases import SUPERVISORS, batch
 from swarmvm.runtime import python_vm
 from checkout import ROOT
 
+pytestmark = pytest.mark.emulator   # runs simavr or QEMU
+
 PAGE = 0x000F3000               # mps2_an386.ld: memory region SVM_LOGIC
 CASES_BLOB = 0x00200000         # page_harness.c: CASES_BLOB
 PAGE_HARNESS = qemu_harness.CAPBOT / "page_harness"

@@ -12,7 +12,7 @@ from swarmvm.cli import main
 from swarmvm.pipeline import compile_inputs
 from swarmvm.script import parse_script
 
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parent.parent / "corpus"
 
 
 def corpus_table():

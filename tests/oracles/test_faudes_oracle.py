@@ -10,7 +10,7 @@ import pytest
 
 from swarmvm.pipeline import compile_inputs
 
-AUTOMATA = Path(__file__).parent / "corpus" / "automata"
+AUTOMATA = Path(__file__).parent.parent / "corpus" / "automata"
 XML = sorted(AUTOMATA.glob("*.xml"))
 
 

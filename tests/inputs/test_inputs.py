@@ -12,9 +12,9 @@ from swarmvm.errors import MAX_BYTES
 from swarmvm.load_supervisor import load_supervisor
 from swarmvm.pipeline import compile_inputs
 
-INPUTS = Path(__file__).parent / "inputs"
+INPUTS = Path(__file__).parent
 MALFORMED = sorted((INPUTS / "malformed").glob("*.yaml"))
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parent.parent / "corpus"
 
 
 def expected_message(path):

@@ -6,7 +6,7 @@ import pytest
 
 from swarmvm.pipeline import compile_inputs
 
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parent.parent / "corpus"
 
 
 def image_of(tmp_path, text, name="m.yaml"):

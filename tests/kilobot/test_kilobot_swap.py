@@ -16,6 +16,8 @@ from swarmvm.render import write_outputs
 from checkout import FIRMWARE
 from swarmvm.targets import generate
 
+pytestmark = pytest.mark.emulator   # runs simavr or QEMU
+
 SVM_ERR_CRC, SVM_ERR_NAMES = 4, 7
 START = 8           # loop of chunk 0
 NORMAL = 0

@@ -10,7 +10,7 @@ import pytest
 from swarmvm.image import chunks
 from swarmvm.pipeline import compile_inputs
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "corpus"
 IDLE, RECEIVING, COMPLETE, GAP, TOO_LARGE, INVALID = range(6)
 SVM_ERR_CRC = 4

@@ -9,7 +9,7 @@ from click.testing import CliRunner
 from swarmvm.cli import main
 from swarmvm.pipeline import compile_inputs
 
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parent.parent / "corpus"
 SUPERVISORS = sorted(CORPUS.glob("*/*.yaml"))
 
 

@@ -13,7 +13,7 @@ from swarmvm.cli import main
 from swarmvm.pipeline import compile_inputs
 from swarmvm.targets import TARGETS
 
-CORPUS = Path(__file__).parent / "corpus"
+CORPUS = Path(__file__).parent.parent / "corpus"
 SUPERVISORS = sorted(CORPUS.glob("*/*.yaml"))
 
 

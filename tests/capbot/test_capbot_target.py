@@ -16,6 +16,8 @@ from conformance.cases import SUPERVISORS
 from swarmvm.runtime import python_vm
 from checkout import ROOT
 
+pytestmark = pytest.mark.emulator   # runs simavr or QEMU
+
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 APP_STEPS = 20          # firmware/capbot/app_qemu.c: SVM_APP_STEPS
