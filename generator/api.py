@@ -9,17 +9,25 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
 from . import footprint as fp
+from . import properties
+from .equiv import compare, format_difference
 from .errors import InputError, read_input
-from .pipeline import Compiled, compile_inputs, compile_spec, load
+from .export import export_files
+from .model import Model
+from .pipeline import Compiled, compile_inputs, compile_spec, load, model_name
+from .properties import format_report
 from .render import write_outputs
 from .runtime import python_vm
 from .script import format_script, parse_script, random_script
+from .synth import models_by_name, synthesise
+from .synth_script import read_synth_script
 from .targets import TARGETS, generate
 from .user_files import Drift, drift
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
            "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "make_script", "trace",
-           "measure_footprint", "TARGETS"]
+           "measure_footprint", "check_properties", "equivalent", "export", "write_export", "synthesise_models",
+           "TARGETS"]
 
 if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
     from runtime_py.swarmvm_vm import Image
@@ -172,3 +180,42 @@ def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
         except ELFError as exc:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
     return rows
+
+
+def check_properties(paths: Sequence[str]) -> list[str]:
+    """The design checks of each supervisor set (docs/models.md), one report per file."""
+    return [format_report(path, properties.check_properties(compile_model([path]).model)) for path in paths]
+
+
+def equivalent(a: str, b: str) -> tuple[bool, str]:
+    """Whether supervisor sets A and B have the same events and conjunction language, and the
+    report (a shortest distinguishing event sequence when not)."""
+    difference = compare(compile_model([a]).model, compile_model([b]).model)
+    return difference is None, format_difference(a, b, difference)
+
+
+def write_export(model: Model, name: str, fmt: str, output: str, product_limit: int = 200) -> list[str]:
+    """Write a model as ``fmt`` (export.FORMATS): yaml to the file ``output``, the others into
+    the directory ``output``. The paths written."""
+    files = export_files(model, name, fmt, product_limit)
+    if fmt == "yaml":
+        target = Path(output).absolute()
+        return write_outputs(target.parent, {target.name: (files[name + ".yaml"], False)})
+    return write_outputs(output, {rel: (data, False) for rel, data in files.items()})
+
+
+def export(inputs: Sequence[str], fmt: str, output: str, name: str | None = None,
+           product_limit: int = 200) -> tuple[Compiled, list[str]]:
+    """Write a supervisor set as Nadzoru 2 YAML, libFAUDES .gen or Graphviz pictures."""
+    compiled = compile_model(inputs, name=name)
+    return compiled, write_export(compiled.model, compiled.name, fmt, output, product_limit)
+
+
+def synthesise_models(models: Sequence[str], script_path: str | None, statements: Sequence[str],
+                      exports: Sequence[str], minimise: bool, fmt: str, output: str) -> list[str]:
+    """Local modular synthesis (libFAUDES) from plants and specifications by a script
+    (docs/models.md); writes the supervisor set as ``fmt`` and returns the paths written."""
+    script = read_synth_script(script_path, statements)
+    spec = synthesise(script, models_by_name(list(models)), exports, minimise)
+    name = model_name([output]) if fmt == "yaml" else model_name([script.source])
+    return write_export(compile_spec(spec, [script.source]).model, name, fmt, output, 0)

@@ -1,4 +1,5 @@
-"""The ``swarmvm`` command line: a thin layer over :mod:`swarmvm.api`.
+"""The ``swarmvm`` command line (check, pack, gen, script, trace, footprint, synth, equiv,
+export): a thin layer over :mod:`swarmvm.api`.
 
 Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on stderr and
 exit status 2, before anything is written."""
@@ -12,6 +13,7 @@ import click
 
 from . import __version__, api
 from . import footprint as fp
+from .export import FORMATS
 from .render import write_outputs
 from .runtime import python_vm
 
@@ -43,12 +45,19 @@ def main() -> None:
 
 @main.command()
 @click.argument("files", nargs=-1, required=True)
+@click.option("--properties", is_flag=True,
+              help="Also check each set's design: deadlocks, lost control, dead events, ignored inputs, "
+                   "confluence (docs/models.md).")
 @reports_errors
-def check(files: tuple[str, ...]) -> None:
-    """Validate supervisors (.yaml, .xml) or table images (.svm) and print their sizes.
+def check(files: tuple[str, ...], properties: bool) -> None:
+    """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
+    if properties:
+        for report in api.check_properties(files):
+            click.echo(report)
+        return
     rows, warnings = api.check(files)
     _warn(warnings)
     click.echo("| file | events | supervisors | states | transitions | bytes |")
@@ -151,3 +160,57 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, 
         more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
         click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
         sys.exit(1)
+
+
+@main.command()
+@click.argument("models", nargs=-1, required=True)
+@click.option("--script", "script_path", type=click.Path(dir_okay=False),
+              help="Synthesis script (docs/models.md), e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
+@click.option("-e", "--statement", "statements", multiple=True, metavar="STATEMENT",
+              help="A script statement, e.g. 'S = SupC(G, K)' (repeatable; instead of --script).")
+@click.option("--export", "exports", multiple=True, metavar="NAME",
+              help="A result that joins the output set, in order (repeatable; default: the script's export, "
+                   "else every SupC result).")
+@click.option("--minimise", is_flag=True, help="Minimise each output supervisor (libFAUDES StateMin).")
+@click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True)
+@click.option("-o", "--output", required=True,
+              help="yaml: the supervisor.yaml to write; gen: a directory for one .gen per supervisor.")
+@reports_errors
+def synth(models: tuple[str, ...], script_path: str | None, statements: tuple[str, ...], exports: tuple[str, ...],
+          minimise: bool, fmt: str, output: str) -> None:
+    """Synthesise local modular supervisors from plants and specifications (libFAUDES).
+
+    MODELS are automata (.xml, .xmd, .nza, .gen); the script names each by its file stem."""
+    for path in api.synthesise_models(models, script_path, statements, exports, minimise, fmt, output):
+        click.echo(path)
+
+
+@main.command()
+@click.argument("a")
+@click.argument("b")
+@reports_errors
+def equiv(a: str, b: str) -> None:
+    """Do supervisor sets A and B have the same events and the same conjunction language?
+
+    A and B are supervisor files, automata, or directories of automata. Exit status 0 when
+    equivalent; 1 with a shortest distinguishing event sequence when not."""
+    same, report = api.equivalent(a, b)
+    click.echo(report)
+    if not same:
+        sys.exit(1)
+
+
+@main.command()
+@click.argument("inputs", nargs=-1, required=True)
+@click.option("-f", "--format", "fmt", type=click.Choice(FORMATS), required=True)
+@click.option("-o", "--output", required=True, help="yaml: the file to write; gen, dot, svg: a directory.")
+@click.option("--name", help="Stem of the files written (default: the input's file stem).")
+@click.option("--product-limit", default=200, show_default=True, type=click.IntRange(0),
+              help="Draw the product of the supervisors only up to this many states.")
+@reports_errors
+def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, product_limit: int) -> None:
+    """Write a supervisor set as Nadzoru 2 YAML (canonical), libFAUDES .gen, or Graphviz pictures."""
+    compiled, written = api.export(inputs, fmt, output, name=name, product_limit=product_limit)
+    _warn(compiled.model.warnings)
+    for path in written:
+        click.echo(path)

@@ -10,7 +10,7 @@ venv="${VENV:-.venv}"
 python="${SETUP_PYTHON:-python3}"
 
 packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
-  g++ clang cmake pkg-config cppcheck python3-venv"
+  g++ clang cmake pkg-config cppcheck python3-venv graphviz"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 import faudes
 import pytest
 
+from swarmvm.faudes_bridge import build_system
 from swarmvm.pipeline import compile_inputs
 
 AUTOMATA = Path(__file__).parent.parent / "corpus" / "automata"
@@ -15,40 +16,28 @@ XML = sorted(AUTOMATA.glob("*.xml"))
 
 
 def faudes_from_xml(path):
-    """A libFAUDES generator from Nadzoru 2 XML, every state marked (closed language)."""
+    """A libFAUDES generator from Nadzoru 2 XML, read here with ElementTree (not swarmvm's
+    loader), every state marked (closed language)."""
     data = ET.parse(path).getroot().find("data")
-    g = faudes.Generator()
-    names = {e.get("id"): "ev_" + e.get("name") for e in data.findall("event")}
-    for name in names.values():
-        g.InsEvent(name)
-    for s in data.findall("state"):
-        label = "s" + s.get("id")
-        g.InsMarkedState(label)
-        if s.get("initial").strip() == "True":
-            g.SetInitState(label)
-    for t in data.findall("transition"):
-        g.SetTransition("s" + t.get("source"), names[t.get("event")], "s" + t.get("target"))
-    return g
+    names = {e.get("id"): e.get("name") for e in data.findall("event")}
+    ids = [s.get("id") for s in data.findall("state")]
+    initial = next(i for i, s in enumerate(data.findall("state")) if s.get("initial").strip() == "True")
+    transitions = [(ids.index(t.get("source")), names[t.get("event")], ids.index(t.get("target")))
+                   for t in data.findall("transition")]
+    return build_system(((n, False) for n in names.values()), len(ids), initial, None, transitions)
 
 
 def faudes_from_image(vm, image, sup):
-    """A libFAUDES generator for supervisor ``sup`` of a table image."""
+    """A libFAUDES generator for supervisor ``sup`` of a table image, read by the Python VM."""
     image = vm.Image.parse(image)
-    g = faudes.Generator()
-    for e in range(image.num_events):
-        if image.sup_alphabet[sup] >> e & 1:
-            g.InsEvent("ev_" + image.names[e])
+    events = [(image.names[e], False) for e in range(image.num_events) if image.sup_alphabet[sup] >> e & 1]
     first = image.sup_first_state[sup]
-    for q in range(image.sup_num_states[sup]):
-        g.InsMarkedState("q%d" % q)
-    g.SetInitState("q%d" % image.sup_initial[sup])
+    transitions = []
     for q in range(image.sup_num_states[sup]):
         defined = image.state_defined[first + q]
-        events = [e for e in range(image.num_events) if defined >> e & 1]
-        for rank, e in enumerate(events):
-            target = image.targets[image.state_first[first + q] + rank]
-            g.SetTransition("q%d" % q, "ev_" + image.names[e], "q%d" % target)
-    return g
+        for rank, e in enumerate(e for e in range(image.num_events) if defined >> e & 1):
+            transitions.append((q, image.names[e], image.targets[image.state_first[first + q] + rank]))
+    return build_system(events, image.sup_num_states[sup], image.sup_initial[sup], None, transitions)
 
 
 @pytest.mark.parametrize("path", XML, ids=lambda p: p.name)
