@@ -1,6 +1,7 @@
 """The compiler pipeline in one call: load -> validate -> canonicalise -> tables -> image."""
 
 import os
+import re
 from dataclasses import dataclass
 
 from .canonical import canonicalise
