@@ -409,7 +409,7 @@ def replay(vm, rows):
     """Run ``vm`` from reset on an event script (a list of sets of event indices, one per step)
     and return the canonical trace lines. This is the reference conformance harness: the C and
     C++ harnesses do exactly this and must print the same lines."""
-    script = {"row": set()}
+    script: dict = {"row": set()}
     for event in vm.input_order:
         vm.bind(event, check=lambda _data, event=event: event in script["row"])
     vm.reset()
