@@ -41,7 +41,7 @@ def compare(a: Model, b: Model) -> Optional[Difference]:
     # Same names, and canonical models sort them: the event indices agree.
     ca, cb = Conjunction(a), Conjunction(b)
     start = (tuple(0 for _ in a.supervisors), tuple(0 for _ in b.supervisors))
-    seen = {start: None}
+    seen: Dict[Tuple[Vector, Vector], Optional[tuple]] = {start: None}
     queue = deque([start])
     while queue:
         pair = queue.popleft()
@@ -51,7 +51,7 @@ def compare(a: Model, b: Model) -> Optional[Difference]:
                 word = _word(seen, pair) + [event]
                 return Difference(word=tuple(a.events[e] for e in word), allowed_by="A" if nb is None else "B",
                                   reason="the conjunctions' languages differ")
-            if na is not None and (na, nb) not in seen:
+            if na is not None and nb is not None and (na, nb) not in seen:
                 seen[(na, nb)] = (pair, event)
                 queue.append((na, nb))
     return None
@@ -59,9 +59,11 @@ def compare(a: Model, b: Model) -> Optional[Difference]:
 
 def _word(seen: Dict[Tuple[Vector, Vector], Optional[tuple]], pair) -> List[int]:
     out = []
-    while seen[pair] is not None:
-        pair, event = seen[pair]
+    step = seen[pair]
+    while step is not None:
+        pair, event = step
         out.append(event)
+        step = seen[pair]
     return out[::-1]
 
 

@@ -24,7 +24,9 @@ def to_yaml(model: Model) -> str:
     """The model as a Nadzoru 2 ``supervisor.yaml`` (newer spelling: ``ev_public``)."""
     n = len(model.events)
     data: List = []
-    positions, prob_data, prob_positions = [], [], []
+    positions: List[int] = []
+    prob_data: List = []
+    prob_positions: List[int] = []
     for sup in model.supervisors:
         positions.append(len(data))
         prob_positions.append(len(prob_data))

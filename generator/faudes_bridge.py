@@ -5,12 +5,24 @@ an independent oracle on swarmvm's languages; both go through :func:`build_syste
 libFAUDES an event is named with Nadzoru's ``EV_`` prefix (libFAUDES refuses an empty symbol,
 which Nadzoru 2 allows); states are named ``s0, s1, ...`` by their index in the automaton."""
 
-from typing import Dict, Iterable, List, Optional, Tuple
-
-import faudes
+import contextlib
+import io
+from functools import lru_cache
+from types import ModuleType
+from typing import Any, Dict, Iterable, List, Optional, Tuple
 
 from .load_supervisor import bare_name
 from .model import LocalSupervisor, Model, Transition
+
+
+@lru_cache(maxsize=None)
+def libfaudes() -> ModuleType:
+    """The ``faudes`` module, imported on first use: only synthesis needs it, and its import
+    prints warnings on standard output (no matplotlib or pillow), which would otherwise end up
+    in every command's output."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        import faudes
+    return faudes
 
 
 def faudes_name(event: str) -> str:
@@ -19,10 +31,10 @@ def faudes_name(event: str) -> str:
 
 
 def build_system(events: Iterable[Tuple[str, bool]], num_states: int, initial: int,
-                 marked: Optional[Iterable[int]], transitions: Iterable[Tuple[int, str, int]]) -> "faudes.System":
+                 marked: Optional[Iterable[int]], transitions: Iterable[Tuple[int, str, int]]) -> Any:
     """A libFAUDES System (a generator with controllability flags). ``events``: (name,
     controllable); ``marked`` None marks every state (a closed language)."""
-    system = faudes.System()
+    system = libfaudes().System()
     for name, controllable in events:
         system.InsEvent(faudes_name(name))
         if controllable:
@@ -37,14 +49,14 @@ def build_system(events: Iterable[Tuple[str, bool]], num_states: int, initial: i
     return system
 
 
-def system_from_local(local: LocalSupervisor, controllable: Dict[str, bool]) -> "faudes.System":
+def system_from_local(local: LocalSupervisor, controllable: Dict[str, bool]) -> Any:
     """A supervisor or automaton as read (marking kept) -> libFAUDES System."""
     transitions = [(q, t.event, t.target) for q, row in enumerate(local.states) for t in row]
     return build_system(sorted((e, controllable[e]) for e in local.alphabet), len(local.states),
                         local.initial, None if local.marked is None else sorted(local.marked), transitions)
 
 
-def system_from_model(model: Model, sup: int) -> "faudes.System":
+def system_from_model(model: Model, sup: int) -> Any:
     """Local supervisor ``sup`` of a canonical model -> libFAUDES System (closed language)."""
     local = model.supervisors[sup]
     transitions = [(q, model.events[e], target) for q, row in enumerate(local.states) for e, target, _ in row]
@@ -52,7 +64,7 @@ def system_from_model(model: Model, sup: int) -> "faudes.System":
                         len(local.states), 0, None, transitions)
 
 
-def local_from_system(system: "faudes.System") -> Tuple[Dict[str, bool], LocalSupervisor]:
+def local_from_system(system: Any) -> Tuple[Dict[str, bool], LocalSupervisor]:
     """A deterministic libFAUDES System with at most one initial state -> ({event:
     controllable}, LocalSupervisor with its marking), states in libFAUDES' order."""
     states, alphabet, controllable, delta, initial, marked = system.ToLists()

@@ -59,7 +59,7 @@ def load_automaton(path):
         probability = None
         if element.get("probability") is not None:
             try:
-                probability = Fraction(element.get("probability"))
+                probability = Fraction(element.get("probability", ""))
             except ValueError:
                 probability = None
             if probability is None or not 0 <= probability <= 1:
@@ -80,7 +80,9 @@ def read_automaton(path):
 
 def load_automata(paths):
     """Several XML files -> one :class:`Supervisors` (one local supervisor per file)."""
-    events, supervisors, probabilistic, size = {}, [], False, 0
+    events: dict = {}
+    supervisors: list = []
+    probabilistic, size = False, 0
     for path in paths:
         read = read_automaton(path)
         for name, flags in read.events.items():

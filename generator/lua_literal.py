@@ -8,7 +8,7 @@ syntax error: nothing in the file is ever executed. Tables come back as dicts ke
 Lua keys (positional entries get 1, 2, ...)."""
 
 import re
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 MAX_DEPTH = 32
 
@@ -42,7 +42,8 @@ def _unescape(body: str, line: int) -> str:
             continue
         nxt = body[i + 1]
         if nxt.isdigit():
-            digits = re.match(r"[0-9]{1,3}", body[i + 1:]).group()
+            found = re.match(r"[0-9]{1,3}", body[i + 1:])
+            digits = found.group() if found else nxt
             if int(digits) > 255:
                 raise LuaSyntaxError(line, "escape \\%s is out of range" % digits)
             out.append(chr(int(digits)))
@@ -77,7 +78,7 @@ class _Parser:
     def peek(self) -> Tuple[str, str, int]:
         return self.tokens[self.pos]
 
-    def take(self, value: str = None):
+    def take(self, value: Optional[str] = None):
         kind, text, line = self.tokens[self.pos]
         if value is not None and text != value:
             raise LuaSyntaxError(line, "expected %r, found %r" % (value, text or "end of file"))

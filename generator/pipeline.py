@@ -10,6 +10,7 @@ from .image import pack
 from .load_automata import SUFFIXES, load_automata
 from .load_supervisor import load_supervisor
 from .model import Model
+from .naming import model_identifier
 from .tables import Tables, build_tables
 
 
@@ -50,10 +51,9 @@ def load(paths):
 
 
 def model_name(paths, name=None):
-    """The model's name: ``name`` if given, else the first input's file stem, as an identifier."""
-    stem = name or os.path.splitext(os.path.basename(paths[0]))[0]
-    stem = re.sub(r"\W", "_", stem)
-    return "m_" + stem if stem[:1].isdigit() else stem
+    """The model's name: ``name`` if given, else the first input's file stem, as an identifier
+    (naming.model_identifier)."""
+    return model_identifier(name or os.path.splitext(os.path.basename(paths[0]))[0], paths[0])
 
 
 def compile_inputs(paths, name=None, names=True):

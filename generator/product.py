@@ -28,9 +28,11 @@ class Product:
     def word(self, state: int) -> List[int]:
         """A shortest event sequence (event indices) from the initial state to ``state``."""
         out = []
-        while self.parent[state] is not None:
-            state, event = self.parent[state]
+        step = self.parent[state]
+        while step is not None:
+            state, event = step
             out.append(event)
+            step = self.parent[state]
         return out[::-1]
 
 
@@ -59,7 +61,8 @@ def build_product(model: Model, limit: int = 1_000_000) -> Product:
     conjunction = Conjunction(model)
     start = tuple(0 for _ in model.supervisors)
     number: Dict[Vector, int] = {start: 0}
-    vectors, edges, parent = [start], [], [None]
+    vectors, edges = [start], []
+    parent: List[Optional[Tuple[int, int]]] = [None]
     queue = deque([start])
     while queue:
         vector = queue.popleft()

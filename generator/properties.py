@@ -47,7 +47,7 @@ def _names(model: Model, events) -> Tuple[str, ...]:
 def _no_control_again(model: Model, product: Product) -> List[int]:
     """States from which no state enabling a controllable event is reachable."""
     can = {q for q, row in enumerate(product.edges) if any(model.controllable[e] for e, _ in row)}
-    predecessors = [[] for _ in product.vectors]
+    predecessors: list[list[int]] = [[] for _ in product.vectors]
     for q, row in enumerate(product.edges):
         for _, t in row:
             predecessors[t].append(q)

@@ -32,12 +32,13 @@ PUBLIC = re.compile(r"^[ \t]*% swarmvm public:(.*)$", re.MULTILINE)
 
 
 def _tokens(path: str, text: str) -> List[Tuple[str, str, int]]:
-    out, pos, line = [], 0, 1
+    out: List[Tuple[str, str, int]] = []
+    pos, line = 0, 1
     while pos < len(text):
         match = TOKEN.match(text, pos)
         if match is None:
             raise InputError(path, "", "unexpected character %r" % text[pos], "line %d" % line)
-        kind, value = match.lastgroup, match.group()
+        kind, value = match.lastgroup or "", match.group()
         if kind == "string":
             kind, value = "word", value[1:-1]
         if kind != "space":
@@ -51,12 +52,14 @@ def _sections(path, tokens):
     """{section: [(kind, value, line), ...]} between <Generator> and </Generator>."""
     if not tokens or not re.match(r"<Generator[\s>]", tokens[0][1]) or tokens[0][1].endswith("/>"):
         raise InputError(path, "Generator", "expected <Generator> at the top")
-    body, i = {}, 1
+    body: dict = {}
+    i = 1
     if i < len(tokens) and tokens[i][0] == "word" and tokens[i][1] not in SECTIONS:
         i += 1                                   # old style: the generator's name as a string
     while i < len(tokens) and tokens[i][1] != "</Generator>":
         kind, value, line = tokens[i]
-        name = re.match(r"<([A-Za-z]+)", value).group(1) if kind == "tag" and not value.startswith("</") else None
+        tag = re.match(r"<([A-Za-z]+)", value) if kind == "tag" and not value.startswith("</") else None
+        name = tag.group(1) if tag else None
         if name not in SECTIONS:
             raise InputError(path, name or "Generator", "unexpected %r (expected one of %s)" % (value, ", ".join(SECTIONS)),
                              "line %d" % line)
@@ -76,7 +79,8 @@ def _sections(path, tokens):
 
 def _names(path, section, tokens):
     """State names of a section, expanding <Consecutive> a b </Consecutive> ranges."""
-    out, i = [], 0
+    out: list = []
+    i = 0
     while i < len(tokens):
         kind, value, line = tokens[i]
         if value == "<Consecutive>":

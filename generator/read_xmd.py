@@ -36,5 +36,5 @@ def load_xmd(path: str) -> AutomatonFile:
         if element.get("event") is None:
             raise InputError(path, "transition", "a transition without an event is not supported",
                              "transition %s" % element.get("id", "?"))
-        build.transition(source, element.get("event").strip(), _id(path, element, "target", "transition"))
+        build.transition(source, element.get("event", "").strip(), _id(path, element, "target", "transition"))
     return build.build(size)

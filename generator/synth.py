@@ -9,18 +9,17 @@ and K likewise by G's events it lacks (the specification does not constrain them
 which must agree on them."""
 
 import os
-from typing import Dict, List, Sequence
+from typing import Any, Dict, List, Sequence
 
-import faudes
 
 from .errors import InputError
-from .faudes_bridge import local_from_system, system_from_local
+from .faudes_bridge import libfaudes, local_from_system, system_from_local
 from .load_automata import load_automata
 from .model import Supervisors
 from .synth_script import Step, SynthScript
 
 
-def _self_looped(system: "faudes.System", other: "faudes.System") -> "faudes.System":
+def _self_looped(system: Any, other: Any) -> Any:
     """``system`` extended by the events of ``other`` it lacks, each a self-loop in every state
     and controllable as in ``other``."""
     _, alphabet, own_controllable, _, _, _ = system.ToLists()
@@ -28,29 +27,29 @@ def _self_looped(system: "faudes.System", other: "faudes.System") -> "faudes.Sys
     missing = sorted(set(others) - set(alphabet))
     if not missing:
         return system
-    extended = faudes.System(system)
-    names = faudes.EventSet()
+    extended = libfaudes().System(system)
+    names = libfaudes().EventSet()
     for name in missing:
         names.Insert(name)
-    faudes.SelfLoop(extended, names)          # (libFAUDES drops the event flags here: set them again)
+    libfaudes().SelfLoop(extended, names)          # (libFAUDES drops the event flags here: set them again)
     for name in set(own_controllable) | (set(missing) & set(controllable)):
         extended.SetControllable(name)
     return extended
 
 
-def _apply(step: Step, args: List["faudes.System"]) -> "faudes.System":
-    result = faudes.System()
+def _apply(step: Step, args: List[Any]) -> Any:
+    result = libfaudes().System()
     if step.op == "sync":
-        faudes.Parallel(args[0], args[1], result)
+        libfaudes().Parallel(args[0], args[1], result)
         for more in args[2:]:
-            composed = faudes.System()
-            faudes.Parallel(result, more, composed)
+            composed = libfaudes().System()
+            libfaudes().Parallel(result, more, composed)
             result = composed
     elif step.op == "supc":
         plant, spec = args
-        faudes.SupCon(_self_looped(plant, spec), _self_looped(spec, plant), result)
+        libfaudes().SupCon(_self_looped(plant, spec), _self_looped(spec, plant), result)
     else:
-        faudes.StateMin(args[0], result)
+        libfaudes().StateMin(args[0], result)
     return result
 
 
@@ -88,7 +87,8 @@ def synthesise(script: SynthScript, models: Dict[str, str], exports: Sequence[st
     chosen = list(exports or script.exports or supc_order)
     if not chosen:
         raise InputError(script.source, "export", "no supervisor to export (no SupC and no export given)")
-    supervisors, events = [], []
+    supervisors: list = []
+    events: list = []
     for name in chosen:
         if name not in env:
             raise InputError(script.source, "export", "%s is not a model or a result of the script" % name)

@@ -8,7 +8,6 @@
 #define SWARMVM_ARGOS_HPP
 
 #include <cstdint>
-#include <string_view>
 
 #include <argos3/core/utility/math/rng.h>
 
@@ -37,17 +36,6 @@ private:
 };
 
 using ArgosVM = BasicVM<ArgosRng>;
-
-// The 16-bit code a public event's message travels as over range-and-bearing: FNV-1a of the
-// message name ("x" for both the sender's EV_x and the receiver's EV__x), folded to 16 bits,
-// never 0 (0 means "no message"). By name, because sender and receiver usually run
-// different supervisors, whose event indices differ.
-constexpr std::uint16_t message_code(std::string_view name) {
-    std::uint32_t hash = 2166136261u;
-    for (char c : name) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
-    const auto code = static_cast<std::uint16_t>((hash >> 16) ^ (hash & 0xFFFFu));
-    return code != 0 ? code : 1;
-}
 
 }  // namespace swarmvm
 
