@@ -1,9 +1,12 @@
 """Shared helpers of the model tests: corpus paths, the CLI, small automata written as
 libFAUDES .gen text, and libFAUDES' language of a set's conjunction (the oracle)."""
 
+import os
+import shutil
 from pathlib import Path
 
 import faudes
+import pytest
 from click.testing import CliRunner
 
 from swarmvm.cli import main
@@ -40,3 +43,11 @@ def conjunction(model):
     for system in systems[1:]:
         product = faudes.Parallel(product, system)
     return product
+
+
+def need_tools(*tools, package):
+    """Skip, saying how to get them, when ``tools`` are missing on a user's machine; in CI
+    (CI=true) never skip: the test then fails, as a missing tool there is a defect."""
+    missing = [t for t in tools if shutil.which(t) is None]
+    if missing and not os.environ.get("CI"):
+        pytest.skip("needs %s: apt-get install %s" % (", ".join(missing), package))

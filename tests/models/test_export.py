@@ -4,13 +4,12 @@ controllable events apart from uncontrollable ones."""
 
 import os
 import re
-import shutil
 import xml.etree.ElementTree as ET
 
 import faudes
 import pytest
 
-from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
+from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, need_tools, run
 from swarmvm.faudes_bridge import system_from_model
 from swarmvm.pipeline import compile_inputs
 
@@ -88,8 +87,7 @@ def test_the_product_is_drawn_only_up_to_the_limit(tmp_path):
 
 
 def test_pictures_are_deterministic(tmp_path):
-    if shutil.which("dot") is None and not os.environ.get("CI"):
-        pytest.skip("needs Graphviz' dot: apt-get install graphviz")
+    need_tools("dot", package="graphviz")
     for fmt in ("dot", "svg"):
         assert run("export", ENERGY_WORKER, "-f", fmt, "-o", tmp_path / "a").exit_code == 0
         assert run("export", ENERGY_WORKER, "-f", fmt, "-o", tmp_path / "b").exit_code == 0

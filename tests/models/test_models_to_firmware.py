@@ -2,12 +2,9 @@
 plants and specifications to a running C program whose table image is byte for byte the
 one compiled from the published supervisor.yaml."""
 
-import shutil
 import subprocess
 
-import pytest
-
-from models.model_cases import ENERGY_WORKER, SYNTHESIS, run
+from models.model_cases import ENERGY_WORKER, SYNTHESIS, need_tools, run
 from swarmvm.pipeline import compile_inputs
 
 
@@ -18,8 +15,7 @@ def test_synthesised_tables_are_the_published_ones_byte_for_byte(tmp_path):
 
 
 def test_three_commands_from_models_to_a_running_program(tmp_path):
-    if shutil.which("make") is None or shutil.which("cc") is None:
-        pytest.skip("needs make and a C compiler: apt-get install build-essential")
+    need_tools("make", "cc", package="build-essential")
     model = tmp_path / "worker.yaml"
     assert run("synth", "--script", SYNTHESIS / "script.txt", *sorted(SYNTHESIS.glob("[GE]?.xml")), "-o", model).exit_code == 0
     assert run("gen", model, "--target", "c", "-o", tmp_path / "c").exit_code == 0
