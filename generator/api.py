@@ -199,7 +199,7 @@ def write_export(model: Model, name: str, fmt: str, output: str, product_limit: 
     the directory ``output``. The paths written."""
     files = export_files(model, name, fmt, product_limit)
     if fmt == "yaml":
-        target = Path(output).absolute()
+        target = Path(output)
         return write_outputs(target.parent, {target.name: (files[name + ".yaml"], False)})
     return write_outputs(output, {rel: (data, False) for rel, data in files.items()})
 

@@ -32,6 +32,11 @@ verbs() {
   "$cli" trace "$example" --script script.txt --seed 7
   "$cli" trace logic.svm --script script.txt --seed 7 --policy first
   "$cli" footprint "${elfs[@]}"
+  local models="$root/tests/corpus/synthesis/energy_worker"
+  "$cli" synth --script "$models/script.txt" "$models"/[GE]?.xml -o synth.yaml
+  "$cli" equiv synth.yaml "$example"
+  "$cli" check --properties "$example"
+  "$cli" export "$example" --format gen -o export && "$cli" export "$example" --format dot -o export
 }
 for install in editable wheel; do
   mkdir -p "$work/run-$install"
