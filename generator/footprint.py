@@ -124,7 +124,7 @@ def _is_image(elf, symbol):
     if section["sh_type"] == "SHT_NOBITS":
         return False
     start = symbol["st_value"] - section["sh_addr"]
-    header = FORMAT.Header(section.data()[start:start + FORMAT.HEADER_SIZE])
+    header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
     return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
 
 

@@ -12,16 +12,36 @@ robot too.
 
 import enum
 import struct
+from typing import Dict, List, NamedTuple, Optional
 
 __all__ = ["ErrorCode", "Header", "Image", "ImageError", "assemble", "crc16", "read_header"]
 
 MAGIC = b"SVMI"
 FORMAT_VERSION = 1
 
-# The header, field after field (little-endian); every offset follows from the codes.
-HEADER_FIELDS = (("magic", "4s"), ("version", "B"), ("flags", "B"), ("num_events", "B"),
-                 ("num_supervisors", "B"), ("num_states", "H"), ("num_transitions", "H"),
-                 ("state_width", "B"), ("mask_bytes", "B"), ("length", "H"))
+
+class Header(NamedTuple):
+    """The header's fields, in image order (docs/image-format.md's table)."""
+
+    magic: bytes
+    version: int
+    flags: int
+    num_events: int
+    num_supervisors: int
+    num_states: int
+    num_transitions: int
+    state_width: int
+    mask_bytes: int
+    length: int
+
+    @classmethod
+    def unpack(cls, raw: bytes) -> "Header":
+        """The fields of the first HEADER_SIZE bytes of ``raw``, unchecked."""
+        return cls._make(HEADER.unpack_from(raw))
+
+
+# Each field's struct code (little-endian); every offset follows from them.
+HEADER_FIELDS = tuple(zip(Header._fields, ("4s", "B", "B", "B", "B", "H", "H", "B", "B", "H")))
 HEADER = struct.Struct("<" + "".join(code for _, code in HEADER_FIELDS))
 HEADER_SIZE = HEADER.size
 OFFSETS = {name: struct.calcsize("<" + "".join(code for _, code in HEADER_FIELDS[:i]))
@@ -74,12 +94,12 @@ class ErrorCode(enum.IntEnum):
 class ImageError(ValueError):
     """A table image that cannot be run; ``code`` (:class:`ErrorCode`) says why, as C does."""
 
-    def __init__(self, code, message):
+    def __init__(self, code: ErrorCode, message: str) -> None:
         super().__init__(message)
         self.code = code
 
 
-def crc16(data, crc=0xFFFF):
+def crc16(data: bytes, crc: int = 0xFFFF) -> int:
     """CRC-16 with the reflected CCITT polynomial 0x8408, no final xor (CRC-16/MCRF4XX).
 
     It is what avr-libc's ``_crc_ccitt_update`` computes, so the Kilobot checks an image
@@ -91,15 +111,8 @@ def crc16(data, crc=0xFFFF):
     return crc
 
 
-class Header:
-    """The header's fields by name (HEADER_FIELDS)."""
-
-    def __init__(self, raw):
-        for (name, _), value in zip(HEADER_FIELDS, HEADER.unpack_from(raw)):
-            setattr(self, name, value)
-
-
-def assemble(num_events, num_supervisors, num_states, num_transitions, state_width, sections):
+def assemble(num_events: int, num_supervisors: int, num_states: int, num_transitions: int, state_width: int,
+             sections: Dict[str, bytes]) -> bytes:
     """The image: header, ``sections`` ({name: bytes}) in SECTIONS order, CRC.
 
     "probs" and "names" are optional and set their flags. :class:`ImageError` (LENGTH) when the
@@ -111,12 +124,12 @@ def assemble(num_events, num_supervisors, num_states, num_transitions, state_wid
                          % (length, MAX_IMAGE_SIZE))
     flags = (FLAG_PROBS if "probs" in sections else 0) | (FLAG_NAMES if "names" in sections else 0)
     mask_bytes = (num_events + 7) // 8
-    image = HEADER.pack(MAGIC, FORMAT_VERSION, flags, num_events, num_supervisors, num_states,
-                        num_transitions, state_width, mask_bytes, length) + body
+    image = HEADER.pack(*Header(MAGIC, FORMAT_VERSION, flags, num_events, num_supervisors, num_states,
+                                num_transitions, state_width, mask_bytes, length)) + body
     return image + struct.pack("<H", crc16(image))
 
 
-def read_header(raw):
+def read_header(raw: bytes) -> Header:
     """The header of ``raw`` once the checks before the layout passed (length, magic, version,
     CRC, in that order); :class:`ImageError` with the first that fails."""
     size = len(raw)
@@ -125,7 +138,7 @@ def read_header(raw):
     if size > MAX_IMAGE_SIZE:
         raise ImageError(ErrorCode.LENGTH, "image of %d bytes or more, over the format's maximum of %d"
                          % (size, MAX_IMAGE_SIZE))
-    header = Header(raw)
+    header = Header.unpack(raw)
     if header.length != size:
         raise ImageError(ErrorCode.LENGTH, "image length field says %d bytes, got %d" % (header.length, size))
     if header.magic != MAGIC:
@@ -140,28 +153,28 @@ def read_header(raw):
     return header
 
 
-def _layout_error(message):
+def _layout_error(message: str) -> ImageError:
     return ImageError(ErrorCode.LAYOUT, message)
 
 
-def _u16(raw, pos):
+def _u16(raw: bytes, pos: int) -> int:
     return raw[pos] | (raw[pos + 1] << 8)
 
 
 class _Cursor:
     """Reads the sections in order from a checked layout (no read can pass the checksum)."""
 
-    def __init__(self, raw, mask_bytes):
+    def __init__(self, raw: bytes, mask_bytes: int) -> None:
         self.raw, self.mask_bytes, self.pos = raw, mask_bytes, HEADER_SIZE
 
-    def take(self, size):
+    def take(self, size: int) -> bytes:
         self.pos += size
         return self.raw[self.pos - size:self.pos]
 
-    def mask(self):
+    def mask(self) -> int:
         return int.from_bytes(self.take(self.mask_bytes), "little")
 
-    def record(self, fields):
+    def record(self, fields: struct.Struct) -> tuple:
         return fields.unpack(self.take(fields.size))
 
 
@@ -172,9 +185,10 @@ class Image:
     event e; ``targets[state_first[g] + rank]`` is the successor of global state g on the
     event whose bit is the rank-th set bit of ``state_defined[g]``."""
 
-    def __init__(self, raw, num_events, num_supervisors, controllable, public, sup_alphabet,
-                 sup_first_state, sup_num_states, sup_initial, state_defined, state_first,
-                 targets, probs, names):
+    def __init__(self, raw: bytes, num_events: int, num_supervisors: int, controllable: int, public: int,
+                 sup_alphabet: List[int], sup_first_state: List[int], sup_num_states: List[int],
+                 sup_initial: List[int], state_defined: List[int], state_first: List[int], targets: List[int],
+                 probs: Optional[List[int]], names: Optional[List[str]]) -> None:
         self.raw = raw
         self.num_events = num_events
         self.num_supervisors = num_supervisors
@@ -191,14 +205,14 @@ class Image:
         self.names = names
 
     @classmethod
-    def load(cls, path):
+    def load(cls, path) -> "Image":
         """Read a ``.svm`` file: at most MAX_IMAGE_SIZE + 1 bytes, so that a huge or endless
         file (``/dev/zero``) is refused without reading it all."""
         with open(path, "rb") as handle:
             return cls.parse(handle.read(MAX_IMAGE_SIZE + 1))
 
     @classmethod
-    def parse(cls, raw):
+    def parse(cls, raw: bytes) -> "Image":
         """Check and decode an image; :class:`ImageError` with the code and a message naming the
         first defect. It makes every check of the C reader (svm_validate), in its order."""
         raw = bytes(raw)
@@ -235,7 +249,7 @@ class Image:
         image._check_indices(h)
         return image
 
-    def _check_indices(self, h):
+    def _check_indices(self, h: Header) -> None:
         """Every index the step follows stays inside the image, every mask inside E events."""
         outside = ~((1 << self.num_events) - 1)
         if (self.controllable | self.public) & outside:
@@ -263,11 +277,11 @@ class Image:
         if expected_first != h.num_states:
             raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, h.num_states))
 
-    def event_name(self, event):
+    def event_name(self, event: int) -> str:
         """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
         return "EV_" + (self.names[event] if self.names is not None else str(event))
 
-    def event_index(self, name):
+    def event_index(self, name: str) -> int:
         """Index of an event given as ``EV_x`` or ``x``; KeyError for an unknown name."""
         if self.names is None:
             raise KeyError("this image carries no event names: bind events by index")
@@ -277,7 +291,7 @@ class Image:
         return self.names.index(bare)
 
 
-def _check_sections(raw, h):
+def _check_sections(raw: bytes, h: Header) -> int:
     """Where the names section starts (0: none), once the sections are known to end exactly at
     the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
     m, end = h.mask_bytes, len(raw) - CRC_SIZE

@@ -11,7 +11,6 @@ literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "c
 
 __all__ = ["FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
            "SCT", "SCTPub", "format_trace_line", "replay"]
-           "format_trace_line", "replay"]
 
 from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 

@@ -9,8 +9,6 @@ each expecting the code the format definition gives it (swarmvm_format.ErrorCode
 SVM_ERR_*). The C and C++ programs are built with AddressSanitizer and UBSan, so a reader that
 looks past an image's last byte fails the test too."""
 
-import resource
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -31,16 +29,9 @@ SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g"]
 C_LIMITS = ["-DSVM_MAX_EVENTS=255", "-DSVM_MAX_SUPERVISORS=255", "-DSVM_MAX_STATES=65535"]
 
 
-def _need(tool, package):
-    if shutil.which(tool) is None:
-        pytest.skip("%s not found: install it (apt-get install %s)" % (tool, package))
-
-
 @pytest.fixture(scope="module")
 def readers(tmp_path_factory):
     """The C and C++ reader programs, built once."""
-    _need("gcc", "gcc")
-    _need("g++", "g++")
     out = tmp_path_factory.mktemp("readers")
     c_exe, cpp_exe = out / "reader_check_c", out / "reader_check_cpp"
     subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", *SANITIZE, *C_LIMITS,
@@ -79,10 +70,8 @@ def _reseal(raw):
 
 def _header(raw, **fields):
     """The image with header fields replaced, resealed."""
-    values = F.HEADER.unpack_from(raw)
-    names = [name for name, _ in F.HEADER_FIELDS]
-    values = [fields.get(name, value) for name, value in zip(names, values)]
-    return _reseal(F.HEADER.pack(*values) + raw[F.HEADER_SIZE:])
+    header = F.Header.unpack(raw)._replace(**fields)
+    return _reseal(F.HEADER.pack(*header) + raw[F.HEADER_SIZE:])
 
 
 def _resized(raw, body):
@@ -278,10 +267,11 @@ def test_bad_images_are_really_what_they_say():
     valid unless the case is about it, so the layout cases reach the layout checks."""
     for name, (raw, code) in bad_images().items():
         if code == E.LAYOUT:
-            assert len(raw) >= F.MIN_IMAGE_SIZE and F.Header(raw).length == len(raw), name
+            assert len(raw) >= F.MIN_IMAGE_SIZE and F.Header.unpack(raw).length == len(raw), name
             assert F.crc16(raw[:-2]) == int.from_bytes(raw[-2:], "little"), name
 
 
+@pytest.mark.slow      # builds the C and C++ readers with sanitizers
 def test_every_reader_gives_the_same_code(readers, tmp_path):
     c_exe, cpp_exe = readers
     cases = all_cases()
@@ -323,10 +313,12 @@ def test_oversized_image_is_refused_for_its_length(tmp_path):
 ENDLESS = Path("/dev/zero")
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not ENDLESS.exists(), reason="needs /dev/zero (a Unix system)")
 def test_an_endless_file_is_refused_in_bounded_memory(readers):
     """Python and C++ read at most the maximum image size + 1 bytes of /dev/zero: limited to
-    300 MB (an unbounded read would exceed it) both refuse it with LENGTH."""
+    300 MB (an unbounded read would exceed it) both refuse it with LENGTH; the command line
+    (any input file, read through swarmvm.errors.read_input) refuses it with one line."""
     limit = 300 * 1024 * 1024
     probe = ("import resource, sys\n"
              "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
@@ -338,6 +330,12 @@ def test_an_endless_file_is_refused_in_bounded_memory(readers):
              "    print(int(exc.code))\n" % (limit, limit, str(RUNTIME_PY_DIR)))
     run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=60)
     assert (run.returncode, run.stdout.strip()) == (0, str(int(E.LENGTH))), run.stderr[-1000:]
+    cli = ("import resource, sys\n"
+           "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
+           "from swarmvm.cli import main\n"
+           "main(['check', '/dev/zero'])\n" % (2 * limit, 2 * limit))
+    run = subprocess.run([sys.executable, "-c", cli], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and run.stderr.startswith("swarmvm: error: /dev/zero: file is over"), run.stderr[-1000:]
     _, cpp_exe = readers
     # (AddressSanitizer reserves terabytes of address space: its own RSS limit bounds the C++ run.)
     run = subprocess.run([str(cpp_exe), "--load=/dev/zero"], capture_output=True, text=True, timeout=60,
