@@ -20,12 +20,16 @@ class InputError(Exception):
 
 
 def read_input(path):
-    """The bytes of an input file, refusing one that cannot be read or is over MAX_BYTES."""
+    """The bytes of an input file, refusing one that cannot be read or is over MAX_BYTES. At most
+    MAX_BYTES + 1 bytes are read: a device or pipe (``/dev/zero``) has no size to check first."""
     try:
         size = os.path.getsize(path)
         if size > MAX_BYTES:
             raise InputError(path, "", "file is %d bytes, over the %d-byte limit" % (size, MAX_BYTES))
         with open(path, "rb") as handle:
-            return handle.read()
+            data = handle.read(MAX_BYTES + 1)
+        if len(data) > MAX_BYTES:
+            raise InputError(path, "", "file is over the %d-byte limit" % MAX_BYTES)
+        return data
     except OSError as exc:
         raise InputError(path, "", "cannot read file (%s)" % exc.strerror)

@@ -24,10 +24,9 @@ from pathlib import Path
 from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
 
-from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_PY
+from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_PY, image_format
 
-MAGIC = b"SVMI"
-IMAGE_LENGTH_AT = 14                   # docs/image-format.md: u16 L at offset 14
+FORMAT = image_format()
 TARGET_OF_MACHINE = {"EM_AVR": "kilobot", "EM_ARM": "capbot"}
 NOT_MEMORY = (".eeprom", ".fuse", ".lock", ".signature", ".user_signatures")
 VM_INSTANCE = re.compile(r"(^|_)vm$")
@@ -119,15 +118,14 @@ def _symbols(elf):
 
 def _is_image(elf, symbol):
     """Whether an object symbol holds a table image (magic, and its length field = its size)."""
-    if symbol["st_info"]["type"] != "STT_OBJECT" or symbol["st_size"] < IMAGE_LENGTH_AT + 4:
+    if symbol["st_info"]["type"] != "STT_OBJECT" or symbol["st_size"] < FORMAT.MIN_IMAGE_SIZE:
         return False
     section = elf.get_section(symbol["st_shndx"])
     if section["sh_type"] == "SHT_NOBITS":
         return False
     start = symbol["st_value"] - section["sh_addr"]
-    head = section.data()[start:start + IMAGE_LENGTH_AT + 2]
-    length = int.from_bytes(head[IMAGE_LENGTH_AT:IMAGE_LENGTH_AT + 2], "little")
-    return head[:4] == MAGIC and length == symbol["st_size"]
+    header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
+    return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
 
 
 def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
@@ -166,7 +164,7 @@ def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
                 if kind in counted:
                     setattr(split, bucket, getattr(split, bucket) + symbol["st_size"])
         if images == 0:
-            raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, MAGIC.decode()))
+            raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
     for split in (result.flash, result.ram):
         split.application = split.total - split.core - split.tables
     return result
@@ -191,7 +189,8 @@ def violations(footprints, limits=Limits()):
 
 def source_sizes():
     """Bytes of source of each runtime, to compare with the seed's KPI table."""
-    return {"Python VM (runtime_py/swarmvm_vm.py)": len(RUNTIME_PY.read_bytes()),
+    return {"Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)":
+                len(RUNTIME_PY.read_bytes()) + len(RUNTIME_FORMAT_PY.read_bytes()),
             "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
                 sum(len((RUNTIME_C / n).read_bytes()) for n in ("swarmvm.c", "swarmvm.h")),
             "C++ VM (runtime_cpp/swarmvm.hpp)": len((RUNTIME_CPP / "swarmvm.hpp").read_bytes())}

@@ -2,21 +2,22 @@
 
 The image is the same bytes on every platform: little-endian, fixed widths given in its
 header, sections in a fixed order, a CRC-16 at the end. Every runtime interprets it whether it
-is compiled in or loaded at run time. The reader lives in the Python runtime
-(``swarmvm_vm.Image``) so that parsing has one implementation; the generator reuses it."""
+is compiled in or loaded at run time. Its header, section order and reader are defined once,
+in the Python runtime's ``swarmvm_format`` (``FORMAT`` here); this module only encodes the
+tables' sections."""
 
 import hashlib
-import struct
 
 from . import runtime
 from .errors import InputError
 
-vm = runtime.python_vm()
+FORMAT = runtime.image_format()
 
 
 def pack(tables, source, names=True):
     """The image bytes; InputError when the model is too large for the format."""
-    limits = [("states", tables.num_states, 0xFFFF), ("transitions", tables.num_transitions, 0xFFFF)]
+    limits = [("states", tables.num_states, FORMAT.MAX_STATES),
+              ("transitions", tables.num_transitions, FORMAT.MAX_TRANSITIONS)]
     for what, count, limit in limits:
         if count > limit:
             raise InputError(source, "", "%d %s, over the image format's limit of %d" % (count, what, limit))
@@ -25,32 +26,25 @@ def pack(tables, source, names=True):
     def mask(value):
         return value.to_bytes(m, "little")
 
-    body = bytearray()
-    body += mask(tables.controllable) + mask(tables.public)
-    for s in range(tables.num_supervisors):
-        body += mask(tables.sup_alphabet[s])
-        body += struct.pack("<HHH", tables.sup_first_state[s], tables.sup_num_states[s], tables.sup_initial[s])
-    for g in range(tables.num_states):
-        body += mask(tables.state_defined[g]) + struct.pack("<H", tables.state_first[g])
-    for target in tables.targets:
-        body += target.to_bytes(tables.state_width, "little")
-    flags = 0
+    sections = {
+        "controllable": mask(tables.controllable),
+        "public": mask(tables.public),
+        "supervisors": b"".join(mask(tables.sup_alphabet[s]) + FORMAT.SUPERVISOR_RECORD.pack(
+            tables.sup_first_state[s], tables.sup_num_states[s], tables.sup_initial[s])
+            for s in range(tables.num_supervisors)),
+        "states": b"".join(mask(tables.state_defined[g]) + FORMAT.STATE_RECORD.pack(tables.state_first[g])
+                           for g in range(tables.num_states)),
+        "targets": b"".join(t.to_bytes(tables.state_width, "little") for t in tables.targets),
+    }
     if tables.probs is not None:
-        flags |= vm.FLAG_PROBS
-        body += struct.pack("<%dH" % len(tables.probs), *tables.probs)
+        sections["probs"] = b"".join(FORMAT.PROB.pack(p) for p in tables.probs)
     if names:
-        flags |= vm.FLAG_NAMES
-        for name in tables.names:
-            encoded = name.encode("ascii")
-            body += bytes([len(encoded)]) + encoded
-    length = vm.HEADER_SIZE + len(body) + 2
-    if length > 0xFFFF:
-        raise InputError(source, "", "table image would be %d bytes, over the format's limit of 65535" % length)
-    header = vm.MAGIC + struct.pack("<BBBBHHBBH", vm.FORMAT_VERSION, flags, tables.num_events,
-                                    tables.num_supervisors, tables.num_states, tables.num_transitions,
-                                    tables.state_width, m, length)
-    image = bytes(header + body)
-    return image + struct.pack("<H", vm.crc16(image))
+        sections["names"] = b"".join(bytes([len(n)]) + n.encode("ascii") for n in tables.names)
+    try:
+        return FORMAT.assemble(tables.num_events, tables.num_supervisors, tables.num_states,
+                               tables.num_transitions, tables.state_width, sections)
+    except FORMAT.ImageError as exc:
+        raise InputError(source, "", str(exc))
 
 
 def digest(image):

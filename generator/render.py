@@ -11,7 +11,7 @@ from pathlib import Path
 import jinja2
 
 from . import __version__
-from .image import digest
+from .image import FORMAT, digest
 from .naming import callback_stem, event_names
 from .runtime import TEMPLATES
 
@@ -57,7 +57,8 @@ def context(compiled, **extra):
                   uncontrollable=[e for e in events if not e["controllable"]],
                   num_events=tables.num_events, num_supervisors=tables.num_supervisors,
                   num_states=tables.num_states, num_transitions=tables.num_transitions,
-                  mask_bytes=tables.mask_bytes, probabilistic=tables.probs is not None)
+                  mask_bytes=tables.mask_bytes, probabilistic=tables.probs is not None,
+                  format_version=FORMAT.FORMAT_VERSION)
     values.update(extra)
     return values
 

@@ -16,16 +16,29 @@ RUNTIME_C: Traversable = resources.files("swarmvm.runtime_c")
 RUNTIME_CPP: Traversable = resources.files("swarmvm.runtime_cpp")
 RUNTIME_PY_DIR: Traversable = resources.files("swarmvm.runtime_py")
 RUNTIME_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_vm.py"
+RUNTIME_FORMAT_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_format.py"
 RUNTIME_LEARN_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_learn.py"
+
+
+def _runtime_module(name: str) -> ModuleType:
+    """runtime_py's module ``name``, also registered as the top-level module ``name``: the name
+    generated Python targets import it by, and the runtime files each other (swarmvm_vm imports
+    swarmvm_format), so that code loaded in this process shares its classes (an ``ImageError``
+    raised there is the one the compiler catches)."""
+    module = sys.modules.get(name) or import_module("swarmvm.runtime_py." + name)
+    sys.modules.setdefault(name, module)
+    return module
+
+
+@lru_cache(maxsize=None)
+def image_format() -> ModuleType:
+    """The table image format's one definition (runtime_py/swarmvm_format.py): its constants,
+    error codes, writer (``assemble``) and reader (``Image``)."""
+    return _runtime_module("swarmvm_format")
 
 
 @lru_cache(maxsize=None)
 def python_vm() -> ModuleType:
-    """The reference Python VM (runtime_py/swarmvm_vm.py).
-
-    It is also registered as the top-level module ``swarmvm_vm``, the name generated Python
-    targets import it by, so that generated code loaded in this process shares its classes
-    (an ``ImageError`` raised there is the one the compiler catches)."""
-    module = sys.modules.get("swarmvm_vm") or import_module("swarmvm.runtime_py.swarmvm_vm")
-    sys.modules.setdefault("swarmvm_vm", module)
-    return module
+    """The reference Python VM (runtime_py/swarmvm_vm.py), after the image format it imports."""
+    image_format()
+    return _runtime_module("swarmvm_vm")

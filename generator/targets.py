@@ -9,7 +9,7 @@ from typing import Callable
 
 from . import __version__, kilobot
 from .render import context, render
-from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
+from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
 
 
 @dataclass(frozen=True)
@@ -22,6 +22,8 @@ class Target:
     prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
 
 
+# The Python VM and the image format it reads (swarmvm_vm imports swarmvm_format).
+PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"))
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
     "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
 CAPBOT_RUNTIME_COPIES = C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_logic_page.h", "swarmvm_logic_page.c"))
@@ -32,7 +34,7 @@ TARGETS = {
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
                    ("python/app.py.j2", "{name}_app.py", False),
                    ("python/controller.py.j2", "{name}_controller.py", True)),
-        copies=((RUNTIME_PY, "swarmvm_vm.py"),),
+        copies=PY_RUNTIME_COPIES,
         learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
         learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),)),
     "argos": Target(
@@ -48,7 +50,7 @@ TARGETS = {
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
                    ("pipuck/app.py.j2", "{name}_app.py", False),
                    ("pipuck/controller.py.j2", "{name}_controller.py", True)),
-        copies=((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"))),
+        copies=PY_RUNTIME_COPIES + ((RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"),)),
     "c": Target(
         "C VM (C99, host or microcontroller): tables with the image as a const array, dispatch glue, control loop, Makefile, controller skeleton",
         templates=(("c/tables.h.j2", "{name}_tables.h", False),

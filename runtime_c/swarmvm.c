@@ -5,10 +5,6 @@
  */
 #include "swarmvm.h"
 
-#define HEADER_SIZE 16u
-#define FLAG_NAMES 0x01u
-#define FLAG_PROBS 0x02u
-#define FORMAT_VERSION 1u
 #define Q15_ONE 32768u
 #define SEED_FOR_ZERO 0x9E3779B9UL
 
@@ -68,9 +64,9 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 }
 
 /* Section layout, from the header fields (docs/image-format.md). */
-#define CONTROLLABLE_AT HEADER_SIZE
-#define PUBLIC_AT(m) (HEADER_SIZE + (uint16_t)(m))
-#define SUPS_AT(m) (HEADER_SIZE + 2u * (uint16_t)(m))
+#define CONTROLLABLE_AT SVM_HEADER_SIZE
+#define PUBLIC_AT(m) (SVM_HEADER_SIZE + (uint16_t)(m))
+#define SUPS_AT(m) (SVM_HEADER_SIZE + 2u * (uint16_t)(m))
 #define SUP_SIZE(m) ((uint16_t)(m) + 6u)
 #define STATE_SIZE(m) ((uint16_t)(m) + 2u)
 #define SUP_AT(vm, s) (SUPS_AT((vm)->mask_bytes) + (uint16_t)(s) * SUP_SIZE((vm)->mask_bytes))
@@ -376,21 +372,36 @@ typedef struct layout {
     uint16_t states_at, targets_at, probs_at, names_at;
 } layout_t;
 
-/* Every index the step follows must stay inside the image: check them once here. */
+/* Whether the event mask of `m` bytes at `at` has a bit set at or above event `e` (in its last
+ * byte's padding): an event the image does not have. */
+static uint8_t beyond_events(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
+{
+    uint8_t used = (uint8_t)(e & 7u);
+    return used != 0u && (rd_raw(image, source, (uint16_t)(at + m - 1u)) >> used) != 0u;
+}
+
+/* Every index the step follows must stay inside the image, every event mask inside the image's
+ * events: check them once here. */
 static int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
 {
-    uint8_t m = rd_raw(image, source, 13), width = rd_raw(image, source, 12);
-    uint8_t n = rd_raw(image, source, 7);
-    uint16_t total_states = rd16_raw(image, source, 8), total_trans = rd16_raw(image, source, 10);
+    uint8_t m = rd_raw(image, source, SVM_AT_MASK_BYTES), width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
+    uint8_t n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS), e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
+    uint16_t total_states = rd16_raw(image, source, SVM_AT_NUM_STATES);
+    uint16_t total_trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
     uint16_t expected_first = 0;
     uint8_t s;
+    if (beyond_events(image, source, CONTROLLABLE_AT, m, e) || beyond_events(image, source, PUBLIC_AT(m), m, e)) {
+        return SVM_ERR_LAYOUT;
+    }
     for (s = 0; s < n; s++) {
-        uint16_t at = (uint16_t)(SUPS_AT(m) + (uint16_t)s * (m + 6u) + m);
+        uint16_t alphabet = (uint16_t)(SUPS_AT(m) + (uint16_t)s * (m + 6u));
+        uint16_t at = (uint16_t)(alphabet + m);
         uint16_t first = rd16_raw(image, source, at);
         uint16_t count = rd16_raw(image, source, (uint16_t)(at + 2u));
         uint16_t init = rd16_raw(image, source, (uint16_t)(at + 4u));
         uint16_t q;
-        if (first != expected_first || count == 0 || init >= count || count > total_states - first) {
+        if (first != expected_first || count == 0 || init >= count || count > total_states - first ||
+            beyond_events(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
         for (q = 0; q < count; q++) {
@@ -398,6 +409,9 @@ static int check_indices(const uint8_t *image, uint8_t source, const layout_t *l
             uint16_t succ = rd16_raw(image, source, (uint16_t)(st + m));
             uint16_t defined = 0, k;
             uint8_t i;
+            if (beyond_events(image, source, st, m, e)) {
+                return SVM_ERR_LAYOUT;
+            }
             for (i = 0; i < m; i++) {
                 defined = (uint16_t)(defined + popcount8(rd_raw(image, source, (uint16_t)(st + i))));
             }
@@ -417,33 +431,40 @@ static int check_indices(const uint8_t *image, uint8_t source, const layout_t *l
     return expected_first == total_states ? SVM_OK : SVM_ERR_LAYOUT;
 }
 
+/* Whether `c` may be part of an event name: letters, digits and '_' (the input languages' rule). */
+static uint8_t name_char(uint8_t c)
+{
+    return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+}
+
 static int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
 {
     uint8_t flags, e, n, width, m;
     uint16_t states, trans, end, i;
     uint32_t pos;
-    if (image == 0 || length < HEADER_SIZE + 2u || rd16_raw(image, source, 14) != length) {
+    if (image == 0 || length < SVM_MIN_IMAGE_SIZE || rd16_raw(image, source, SVM_AT_LENGTH) != length) {
         return SVM_ERR_LENGTH;
     }
-    if (rd_raw(image, source, 0) != 'S' || rd_raw(image, source, 1) != 'V' ||
-        rd_raw(image, source, 2) != 'M' || rd_raw(image, source, 3) != 'I') {
+    if (rd16_raw(image, source, SVM_AT_MAGIC) != (uint16_t)SVM_MAGIC ||
+        rd16_raw(image, source, SVM_AT_MAGIC + 2u) != (uint16_t)(SVM_MAGIC >> 16)) {
         return SVM_ERR_MAGIC;
     }
-    if (rd_raw(image, source, 4) != FORMAT_VERSION) {
+    if (rd_raw(image, source, SVM_AT_VERSION) != SVM_FORMAT_VERSION) {
         return SVM_ERR_VERSION;
     }
-    end = (uint16_t)(length - 2u);
+    end = (uint16_t)(length - SVM_CRC_SIZE);
     if (crc16(image, source, end) != rd16_raw(image, source, end)) {
         return SVM_ERR_CRC;
     }
-    flags = rd_raw(image, source, 5);
-    e = rd_raw(image, source, 6);
-    n = rd_raw(image, source, 7);
-    states = rd16_raw(image, source, 8);
-    trans = rd16_raw(image, source, 10);
-    width = rd_raw(image, source, 12);
-    m = rd_raw(image, source, 13);
-    if (e == 0 || n == 0 || (width != 1u && width != 2u) || m != (uint8_t)((e + 7u) / 8u)) {
+    flags = rd_raw(image, source, SVM_AT_FLAGS);
+    e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
+    n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS);
+    states = rd16_raw(image, source, SVM_AT_NUM_STATES);
+    trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
+    width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
+    m = rd_raw(image, source, SVM_AT_MASK_BYTES);
+    if (e == 0 || n == 0 || (width != 1u && width != 2u) || m != (uint8_t)((e + 7u) / 8u) ||
+        (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
@@ -452,13 +473,13 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
     }
 #endif
     /* Section offsets in 32 bits: a corrupt header must not wrap around. */
-    pos = HEADER_SIZE + 2u * (uint32_t)m + (uint32_t)n * (m + 6u);
+    pos = SVM_HEADER_SIZE + 2u * (uint32_t)m + (uint32_t)n * (m + 6u);
     lay->states_at = (uint16_t)pos;
     pos += (uint32_t)states * (m + 2u);
     lay->targets_at = (uint16_t)pos;
     pos += (uint32_t)trans * width;
     lay->probs_at = 0;
-    if (flags & FLAG_PROBS) {
+    if (flags & SVM_FLAG_PROBS) {
         lay->probs_at = (uint16_t)pos;
         pos += 2u * (uint32_t)trans;
     }
@@ -466,13 +487,22 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
     if (pos > end) {
         return SVM_ERR_LAYOUT;
     }
-    if (flags & FLAG_NAMES) {
+    if (flags & SVM_FLAG_NAMES) {
         lay->names_at = (uint16_t)pos;
         for (i = 0; i < e; i++) {
+            uint32_t name_end;
             if (pos >= end) {
                 return SVM_ERR_LAYOUT;
             }
-            pos += 1u + rd_raw(image, source, (uint16_t)pos);
+            name_end = pos + 1u + rd_raw(image, source, (uint16_t)pos);
+            if (name_end > end) {
+                return SVM_ERR_LAYOUT;
+            }
+            for (pos++; pos < name_end; pos++) {
+                if (!name_char(rd_raw(image, source, (uint16_t)pos))) {
+                    return SVM_ERR_LAYOUT;
+                }
+            }
         }
     }
     if (pos != end) {
@@ -575,7 +605,7 @@ static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
 {
     uint16_t old_pos = name_at(vm->image, vm->source, vm->names_at, old_event);
     uint8_t old_len = RD(vm, old_pos);
-    uint8_t e, count = rd_raw(image, source, 6), i;
+    uint8_t e, count = rd_raw(image, source, SVM_AT_NUM_EVENTS), i;
     uint16_t pos = lay->names_at;
     for (e = 0; e < count; e++) {
         uint8_t len = rd_raw(image, source, pos);
@@ -690,10 +720,10 @@ static int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t sou
     vm->targets_at = lay.targets_at;
     vm->probs_at = lay.probs_at;
     vm->names_at = lay.names_at;
-    vm->num_events = RD(vm, 6);
-    vm->num_supervisors = RD(vm, 7);
-    vm->width = RD(vm, 12);
-    vm->mask_bytes = RD(vm, 13);
+    vm->num_events = RD(vm, SVM_AT_NUM_EVENTS);
+    vm->num_supervisors = RD(vm, SVM_AT_NUM_SUPERVISORS);
+    vm->width = RD(vm, SVM_AT_STATE_WIDTH);
+    vm->mask_bytes = RD(vm, SVM_AT_MASK_BYTES);
     svm_reset(vm);
     return SVM_OK;
 }
@@ -1163,7 +1193,7 @@ uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor)
 
 uint16_t svm_num_states(const svm_vm_t *vm)
 {
-    return vm->image == 0 ? 0u : RD16(vm, 8);
+    return vm->image == 0 ? 0u : RD16(vm, SVM_AT_NUM_STATES);
 }
 
 uint16_t svm_violations(const svm_vm_t *vm)

@@ -85,14 +85,37 @@ typedef uint16_t svm_state_t;
 #define SVM_FLASH_BYTE(p) (*(const uint8_t *)(p))
 #endif
 
+/* ---- the table image format (docs/image-format.md) --------------------------------------
+ * Defined once, in runtime_py/swarmvm_format.py; tests/image/test_format_constants.py checks
+ * these against it. Generated tables refuse to compile against a runtime of another version. */
+#define SVM_FORMAT_VERSION 1u
+#define SVM_MAGIC 0x494D5653UL     /* "SVMI", as a little-endian u32 */
+#define SVM_HEADER_SIZE 16u
+#define SVM_CRC_SIZE 2u
+#define SVM_MIN_IMAGE_SIZE 18u      /* header and checksum */
+#define SVM_AT_MAGIC 0u             /* offsets of the header's fields */
+#define SVM_AT_VERSION 4u
+#define SVM_AT_FLAGS 5u
+#define SVM_AT_NUM_EVENTS 6u
+#define SVM_AT_NUM_SUPERVISORS 7u
+#define SVM_AT_NUM_STATES 8u        /* u16 */
+#define SVM_AT_NUM_TRANSITIONS 10u  /* u16 */
+#define SVM_AT_STATE_WIDTH 12u
+#define SVM_AT_MASK_BYTES 13u
+#define SVM_AT_LENGTH 14u           /* u16 L, the image's length, checksum included */
+#define SVM_FLAG_NAMES 0x01u        /* the names section is present */
+#define SVM_FLAG_PROBS 0x02u        /* the probability section is present */
+#define SVM_KNOWN_FLAGS 0x03u       /* an image with any other flag bit is refused */
+
 /* ---- result codes of svm_load and friends (0 = success) -------------------------------- */
 enum svm_result {
     SVM_OK = 0,
-    SVM_ERR_LENGTH = 1,     /* shorter than 18 bytes or length field != given length */
+    SVM_ERR_LENGTH = 1,     /* shorter than SVM_MIN_IMAGE_SIZE or length field != given length */
     SVM_ERR_MAGIC = 2,      /* not "SVMI" */
     SVM_ERR_VERSION = 3,    /* format version this VM does not read */
     SVM_ERR_CRC = 4,        /* checksum mismatch */
-    SVM_ERR_LAYOUT = 5,     /* header inconsistent, sections do not end at L-2, an index out of range */
+    SVM_ERR_LAYOUT = 5,     /* header inconsistent, sections do not end at L-2, an index, mask bit
+                               or name character out of range */
     SVM_ERR_LIMITS = 6,     /* more events/supervisors/states than this build's SVM_MAX_* */
     SVM_ERR_NAMES = 7,      /* swap: a bound event's name is missing from the new image */
     SVM_ERR_EVENT = 8,      /* unknown event index, or a check bound to a controllable event */

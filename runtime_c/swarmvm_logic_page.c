@@ -11,8 +11,6 @@ extern const uint8_t __svm_logic_end[];
 #define PAGE_SIZE ((uint16_t)(__svm_logic_end - __svm_logic_start))
 #endif
 
-#define HEADER_LENGTH_FIELD 14u     /* docs/image-format.md: u16 L at offset 14 */
-#define MIN_IMAGE_LENGTH 18u
 #define NAME_CAPACITY 48u
 
 const uint8_t *svm_logic_page(void)
@@ -28,8 +26,8 @@ uint16_t svm_logic_page_size(void)
 uint16_t svm_logic_page_length(void)
 {
     const uint8_t *page = svm_logic_page();
-    uint16_t claimed = (uint16_t)(page[HEADER_LENGTH_FIELD] | (page[HEADER_LENGTH_FIELD + 1u] << 8));
-    return claimed >= MIN_IMAGE_LENGTH && claimed <= svm_logic_page_size() ? claimed : svm_logic_page_size();
+    uint16_t claimed = (uint16_t)(page[SVM_AT_LENGTH] | (page[SVM_AT_LENGTH + 1u] << 8));
+    return claimed >= SVM_MIN_IMAGE_SIZE && claimed <= svm_logic_page_size() ? claimed : svm_logic_page_size();
 }
 
 int svm_logic_page_validate(void)

@@ -23,10 +23,28 @@
 
 namespace swarmvm {
 
+// The table image format (docs/image-format.md), defined once in runtime_py/swarmvm_format.py;
+// tests/image/test_format_constants.py checks these against it. Generated image headers refuse
+// to compile against a runtime of another version.
 constexpr std::uint8_t kFormatVersion = 1;
+constexpr std::uint32_t kMagic = 0x494D5653u;   // "SVMI", as a little-endian u32
 constexpr std::size_t kHeaderSize = 16;
-constexpr std::uint8_t kFlagNames = 1;
-constexpr std::uint8_t kFlagProbs = 2;
+constexpr std::size_t kCrcSize = 2;
+constexpr std::size_t kMinImageSize = 18;       // header and checksum
+constexpr std::size_t kMaxImageSize = 65535;    // the length field is a u16
+constexpr std::size_t kAtMagic = 0;             // offsets of the header's fields
+constexpr std::size_t kAtVersion = 4;
+constexpr std::size_t kAtFlags = 5;
+constexpr std::size_t kAtNumEvents = 6;
+constexpr std::size_t kAtNumSupervisors = 7;
+constexpr std::size_t kAtNumStates = 8;          // u16
+constexpr std::size_t kAtNumTransitions = 10;    // u16
+constexpr std::size_t kAtStateWidth = 12;
+constexpr std::size_t kAtMaskBytes = 13;
+constexpr std::size_t kAtLength = 14;            // u16 L, checksum included
+constexpr std::uint8_t kFlagNames = 0x01;
+constexpr std::uint8_t kFlagProbs = 0x02;
+constexpr std::uint8_t kKnownFlags = 0x03;       // an image with any other flag bit is refused
 constexpr std::uint32_t kQ15One = 32768;
 constexpr std::uint32_t kZeroSeed = 0x9E3779B9u;
 
@@ -42,10 +60,24 @@ inline std::uint16_t crc16(const std::uint8_t* data, std::size_t size, std::uint
     return crc;
 }
 
-// A table image that cannot be run: wrong magic or version, bad checksum, truncated.
+// Why an image is refused: the numbers of swarmvm.h's SVM_ERR_* (runtime_py/swarmvm_format.py
+// ErrorCode), so every runtime gives the same code for the same bad image.
+enum class ErrorCode : int {
+    length = 1,   // shorter than kMinImageSize, longer than kMaxImageSize, or L != the length
+    magic = 2,    // not "SVMI"
+    version = 3,  // a format version this VM does not read
+    crc = 4,      // checksum mismatch
+    layout = 5    // header inconsistent, sections do not end at L-2, an index, mask bit or name out of range
+};
+
+// A table image that cannot be run; code() says why, what() says where.
 class ImageError : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    ImageError(ErrorCode code, const std::string& what) : std::runtime_error(what), code_(code) {}
+    ErrorCode code() const { return code_; }
+
+private:
+    ErrorCode code_;
 };
 
 // A callback registered under a name the supervisor does not have (never mapped to event 0).
@@ -155,12 +187,15 @@ struct Image {
     // Checks and decodes an image; throws ImageError naming the first defect.
     static Image parse(const std::uint8_t* data, std::size_t size);
 
-    // Reads a .svm file and parses it.
+    // Reads a .svm file (at most kMaxImageSize + 1 bytes: a huge or endless file is refused
+    // without reading it all) and parses it. std::runtime_error when the file cannot be read.
     static Image load(const std::string& path) {
         std::ifstream in(path, std::ios::binary);
-        if (!in) throw ImageError("cannot read table image " + path);
-        std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        return parse(bytes.data(), bytes.size());
+        if (!in) throw std::runtime_error("cannot read table image " + path);
+        std::vector<char> bytes(kMaxImageSize + 1);
+        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
+        return parse(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     }
 
     // "EV_<name>" when the image carries names, else "EV_<index>".
@@ -188,7 +223,7 @@ public:
     Reader(const std::uint8_t* data, std::size_t end) : data_(data), end_(end) {}
     std::size_t pos() const { return pos_; }
     const std::uint8_t* take(std::size_t count) {
-        if (count > end_ - pos_) throw ImageError("image truncated: a section runs past the checksum");
+        if (count > end_ - pos_) throw ImageError(ErrorCode::layout, "image truncated: a section runs past the checksum");
         const std::uint8_t* at = data_ + pos_;
         pos_ += count;
         return at;
@@ -216,44 +251,106 @@ inline std::string hex4(unsigned value) {
 
 }  // namespace detail
 
-inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
-    if (size < kHeaderSize + 2) {
-        throw ImageError("image truncated: " + std::to_string(size) + " bytes, the header alone needs " +
-                         std::to_string(kHeaderSize + 2));
+namespace detail {
+
+inline unsigned u16_at(const std::uint8_t* data, std::size_t at) {
+    return static_cast<unsigned>(data[at] | (data[at + 1] << 8));
+}
+
+inline ImageError layout_error(const std::string& what) { return ImageError(ErrorCode::layout, "image " + what); }
+
+// Letters, digits and '_': the characters an event name may hold (the input languages' rule).
+inline bool name_char(std::uint8_t c) {
+    return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+}
+
+// The header checks before the layout, in the order of every runtime: length, magic,
+// version, checksum.
+inline void check_header(const std::uint8_t* data, std::size_t size) {
+    if (size < kMinImageSize) {
+        throw ImageError(ErrorCode::length, "image truncated: " + std::to_string(size) +
+                                                " bytes, the header alone needs " + std::to_string(kMinImageSize));
     }
-    if (data[0] != 'S' || data[1] != 'V' || data[2] != 'M' || data[3] != 'I') {
-        throw ImageError("not a swarmvm table image (bad magic, expected SVMI)");
+    if (size > kMaxImageSize) {
+        throw ImageError(ErrorCode::length, "image of " + std::to_string(size) +
+                                                " bytes or more, over the format's maximum of " +
+                                                std::to_string(kMaxImageSize));
     }
-    if (data[4] != kFormatVersion) {
-        throw ImageError("image format version " + std::to_string(data[4]) + ", this VM reads version " +
-                         std::to_string(kFormatVersion));
-    }
-    const std::uint8_t flags = data[5];
-    const unsigned n_events = data[6];
-    const unsigned n_sups = data[7];
-    const unsigned n_states = static_cast<unsigned>(data[8] | (data[9] << 8));
-    const unsigned n_trans = static_cast<unsigned>(data[10] | (data[11] << 8));
-    const unsigned width = data[12];
-    const unsigned mask_bytes = data[13];
-    const std::size_t length = static_cast<std::size_t>(data[14] | (data[15] << 8));
+    const std::size_t length = u16_at(data, kAtLength);
     if (length != size) {
-        throw ImageError("image length field says " + std::to_string(length) + " bytes, got " + std::to_string(size));
+        throw ImageError(ErrorCode::length,
+                         "image length field says " + std::to_string(length) + " bytes, got " + std::to_string(size));
     }
-    const unsigned stored = static_cast<unsigned>(data[length - 2] | (data[length - 1] << 8));
-    const unsigned computed = crc16(data, length - 2);
+    if (u16_at(data, kAtMagic) != (kMagic & 0xFFFFu) || u16_at(data, kAtMagic + 2) != (kMagic >> 16)) {
+        throw ImageError(ErrorCode::magic, "not a swarmvm table image (bad magic, expected SVMI)");
+    }
+    if (data[kAtVersion] != kFormatVersion) {
+        throw ImageError(ErrorCode::version, "image format version " + std::to_string(data[kAtVersion]) +
+                                                 ", this VM reads version " + std::to_string(kFormatVersion));
+    }
+    const unsigned stored = u16_at(data, length - kCrcSize);
+    const unsigned computed = crc16(data, length - kCrcSize);
     if (stored != computed) {
-        throw ImageError("image checksum mismatch (stored " + detail::hex4(stored) + ", computed " +
-                         detail::hex4(computed) + ")");
+        throw ImageError(ErrorCode::crc,
+                         "image checksum mismatch (stored " + hex4(stored) + ", computed " + hex4(computed) + ")");
     }
-    if ((width != 1 && width != 2) || mask_bytes != (n_events + 7) / 8 || n_events == 0 || n_sups == 0) {
-        throw ImageError("image header inconsistent (events " + std::to_string(n_events) + ", mask bytes " +
-                         std::to_string(mask_bytes) + ", state width " + std::to_string(width) + ")");
+}
+
+// The sections end exactly at the checksum and every name holds name characters only
+// (ErrorCode::layout otherwise).
+inline void check_sections(const std::uint8_t* data, std::size_t end) {
+    const unsigned m = data[kAtMaskBytes], n_events = data[kAtNumEvents];
+    const std::uint8_t flags = data[kAtFlags];
+    std::size_t pos = kHeaderSize + 2 * m + data[kAtNumSupervisors] * (m + 6) + u16_at(data, kAtNumStates) * (m + 2) +
+                      u16_at(data, kAtNumTransitions) * data[kAtStateWidth];
+    if (flags & kFlagProbs) pos += 2 * u16_at(data, kAtNumTransitions);
+    if (pos > end) {
+        throw layout_error("sections end at byte " + std::to_string(pos) + ", past the checksum at byte " +
+                           std::to_string(end));
     }
+    if (flags & kFlagNames) {
+        for (unsigned e = 0; e < n_events; ++e) {
+            if (pos >= end) throw layout_error("names section ends at event " + std::to_string(e));
+            const std::size_t name_end = pos + 1 + data[pos];
+            if (name_end > end) throw layout_error("event " + std::to_string(e) + "'s name runs past the checksum");
+            for (++pos; pos < name_end; ++pos) {
+                if (!name_char(data[pos])) {
+                    throw layout_error("event " + std::to_string(e) +
+                                       "'s name holds characters other than letters, digits and '_'");
+                }
+            }
+        }
+    }
+    if (pos != end) {
+        throw layout_error("sections end at byte " + std::to_string(pos) + ", the checksum is at byte " +
+                           std::to_string(end));
+    }
+}
+
+}  // namespace detail
+
+inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
+    detail::check_header(data, size);
+    const std::uint8_t flags = data[kAtFlags];
+    const unsigned n_events = data[kAtNumEvents];
+    const unsigned n_sups = data[kAtNumSupervisors];
+    const unsigned n_states = detail::u16_at(data, kAtNumStates);
+    const unsigned n_trans = detail::u16_at(data, kAtNumTransitions);
+    const unsigned width = data[kAtStateWidth];
+    const unsigned mask_bytes = data[kAtMaskBytes];
+    if ((width != 1 && width != 2) || mask_bytes != (n_events + 7) / 8 || n_events == 0 || n_sups == 0 ||
+        (flags & ~kKnownFlags) != 0) {
+        throw detail::layout_error("header inconsistent (events " + std::to_string(n_events) + ", mask bytes " +
+                                   std::to_string(mask_bytes) + ", state width " + std::to_string(width) +
+                                   ", supervisors " + std::to_string(n_sups) + ", flags " + detail::hex4(flags) + ")");
+    }
+    const std::size_t end = size - kCrcSize;
+    detail::check_sections(data, end);
     Image image;
     image.raw.assign(data, data + size);
     image.num_events = n_events;
     image.num_supervisors = n_sups;
-    detail::Reader in(data, length - 2);
+    detail::Reader in(data, end);
     in.seek(kHeaderSize);
     image.controllable = in.mask(mask_bytes);
     image.public_events = in.mask(mask_bytes);
@@ -280,28 +377,44 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
             image.names.emplace_back(reinterpret_cast<const char*>(at), len);
         }
     }
-    if (in.pos() != length - 2) {
-        throw ImageError("image sections end at byte " + std::to_string(in.pos()) + ", the checksum is at byte " +
-                         std::to_string(length - 2));
-    }
     // Cross-references: the step indexes with them, so an inconsistent image is refused here.
+    const Mask events = Mask::first(n_events);
+    const auto beyond_events = [&](const Mask& mask) { return events.complement_in(mask).any(); };
+    if (beyond_events(image.controllable) || beyond_events(image.public_events)) {
+        throw detail::layout_error("event masks name events beyond the " + std::to_string(n_events) + " events");
+    }
+    unsigned expected_first = 0;
     for (unsigned s = 0; s < n_sups; ++s) {
         const unsigned first = image.sup_first_state[s], count = image.sup_num_states[s];
-        if (count == 0 || first + count > n_states || image.sup_initial[s] >= count) {
-            throw ImageError("image supervisor " + std::to_string(s) + " has states outside the state section");
+        if (first != expected_first || count == 0 || count > n_states - first || image.sup_initial[s] >= count) {
+            throw detail::layout_error("supervisor " + std::to_string(s) +
+                                       "'s states do not follow the previous supervisor's inside the state section");
+        }
+        if (beyond_events(image.sup_alphabet[s])) {
+            throw detail::layout_error("supervisor " + std::to_string(s) + "'s alphabet names events beyond the " +
+                                       std::to_string(n_events) + " events");
         }
         for (unsigned g = first; g < first + count; ++g) {
+            if (beyond_events(image.state_defined[g])) {
+                throw detail::layout_error("state " + std::to_string(g) + " has transitions on events beyond the " +
+                                           std::to_string(n_events) + " events");
+            }
             unsigned successors = 0;
             image.state_defined[g].for_each([&](unsigned) { ++successors; });
             if (image.state_first[g] + successors > n_trans) {
-                throw ImageError("image state " + std::to_string(g) + " has successors outside the target section");
+                throw detail::layout_error("state " + std::to_string(g) + " has successors outside the target section");
             }
             for (unsigned t = image.state_first[g]; t < image.state_first[g] + successors; ++t) {
                 if (image.targets[t] >= count) {
-                    throw ImageError("image transition " + std::to_string(t) + " leads outside its supervisor");
+                    throw detail::layout_error("transition " + std::to_string(t) + " leads outside its supervisor");
                 }
             }
         }
+        expected_first = first + count;
+    }
+    if (expected_first != n_states) {
+        throw detail::layout_error("supervisors hold " + std::to_string(expected_first) + " states, the header says " +
+                                   std::to_string(n_states));
     }
     return image;
 }

@@ -1,37 +1,22 @@
 """swarmvm Python VM: evolves compiled supervisors from a swarmvm table image.
 
-One file, standard library only, so it can be copied onto a robot as it is. It implements the
-execution semantics of docs/semantics.md exactly; the other runtimes (C, C++) are checked
-against this one trace for trace. The tables come from a table image (docs/image-format.md),
-either compiled into a generated module as a bytes literal or read from a ``.svm`` file: both
-go through :meth:`Image.parse`, so "compiled in" and "loaded" are one code path.
+Standard library only, so it can be copied onto a robot as it is, together with
+swarmvm_format.py (the image format and its reader, re-exported here: Image, ImageError,
+crc16, FORMAT_VERSION). It implements the execution semantics of docs/semantics.md exactly;
+the other runtimes (C, C++) are checked against this one trace for trace. The tables come from
+a table image (docs/image-format.md), either compiled into a generated module as a bytes
+literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "compiled in" and
+"loaded" are one code path.
 """
 
-__all__ = ["Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16", "SCT", "SCTPub",
-           "format_trace_line", "replay"]
+__all__ = ["FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
+           "SCT", "SCTPub", "format_trace_line", "replay"]
 
-MAGIC = b"SVMI"
-FORMAT_VERSION = 1
-HEADER_SIZE = 16
-FLAG_NAMES = 1
-FLAG_PROBS = 2
-Q15_ONE = 32768
+from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 
 INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
-
-
-def crc16(data, crc=0xFFFF):
-    """CRC-16 with the reflected CCITT polynomial 0x8408, no final xor (CRC-16/MCRF4XX).
-
-    It is what avr-libc's ``_crc_ccitt_update`` computes, so the Kilobot checks an image
-    with the library routine it already has."""
-    for byte in data:
-        crc ^= byte
-        for _ in range(8):
-            crc = (crc >> 1) ^ 0x8408 if crc & 1 else crc >> 1
-    return crc
 
 
 def callback_stem(name):
@@ -40,10 +25,6 @@ def callback_stem(name):
     ``received_x`` (C++ reserves identifiers with ``__``). The generator names every generated
     identifier by this rule (swarmvm/naming.py) and refuses models where two events share one."""
     return "received" + name if name.startswith("_") else name
-
-
-class ImageError(ValueError):
-    """A table image that cannot be run: wrong magic or version, bad checksum, truncated."""
 
 
 class UnboundEvents(LookupError):
@@ -74,118 +55,6 @@ class XorShift32:
     def below(self, n):
         """An index in [0, n) for n < 65536: the top 16 bits scaled by n, no division."""
         return ((self.next() >> 16) * n) >> 16
-
-
-class Image:
-    """A parsed table image: the canonical tables every runtime interprets.
-
-    Events are numbered 0..E-1 in canonical (name) order; masks are Python ints with bit e for
-    event e; ``targets[state_first[g] + rank]`` is the successor of global state g on the
-    event whose bit is the rank-th set bit of ``state_defined[g]``."""
-
-    def __init__(self, raw, num_events, num_supervisors, controllable, public, sup_alphabet,
-                 sup_first_state, sup_num_states, sup_initial, state_defined, state_first,
-                 targets, probs, names):
-        self.raw = raw
-        self.num_events = num_events
-        self.num_supervisors = num_supervisors
-        self.controllable = controllable
-        self.public = public
-        self.sup_alphabet = sup_alphabet
-        self.sup_first_state = sup_first_state
-        self.sup_num_states = sup_num_states
-        self.sup_initial = sup_initial
-        self.state_defined = state_defined
-        self.state_first = state_first
-        self.targets = targets
-        self.probs = probs
-        self.names = names
-
-    @classmethod
-    def load(cls, path):
-        """Read a ``.svm`` file."""
-        with open(path, "rb") as handle:
-            return cls.parse(handle.read())
-
-    @classmethod
-    def parse(cls, raw):
-        """Check and decode an image; raises :class:`ImageError` naming the first defect."""
-        raw = bytes(raw)
-        if len(raw) < HEADER_SIZE + 2:
-            raise ImageError("image truncated: %d bytes, the header alone needs %d" % (len(raw), HEADER_SIZE + 2))
-        if raw[0:4] != MAGIC:
-            raise ImageError("not a swarmvm table image (magic %r, expected %r)" % (raw[0:4], MAGIC))
-        if raw[4] != FORMAT_VERSION:
-            raise ImageError("image format version %d, this VM reads version %d" % (raw[4], FORMAT_VERSION))
-        flags, n_events, n_sups = raw[5], raw[6], raw[7]
-        n_states, n_trans = _u16(raw, 8), _u16(raw, 10)
-        width, mask_bytes, length = raw[12], raw[13], _u16(raw, 14)
-        if length != len(raw):
-            raise ImageError("image length field says %d bytes, got %d" % (length, len(raw)))
-        stored = _u16(raw, length - 2)
-        if crc16(raw[:length - 2]) != stored:
-            raise ImageError("image checksum mismatch (stored 0x%04x, computed 0x%04x)" % (stored, crc16(raw[:length - 2])))
-        if width not in (1, 2) or mask_bytes != (n_events + 7) // 8 or n_events == 0 or n_sups == 0:
-            raise ImageError("image header inconsistent (events %d, mask bytes %d, state width %d)" % (n_events, mask_bytes, width))
-        pos = HEADER_SIZE
-
-        def mask():
-            nonlocal pos
-            value = int.from_bytes(raw[pos:pos + mask_bytes], "little")
-            pos += mask_bytes
-            return value
-
-        def u16():
-            nonlocal pos
-            value = _u16(raw, pos)
-            pos += 2
-            return value
-
-        controllable, public = mask(), mask()
-        sup_alphabet, sup_first, sup_count, sup_init = [], [], [], []
-        for _ in range(n_sups):
-            sup_alphabet.append(mask())
-            sup_first.append(u16())
-            sup_count.append(u16())
-            sup_init.append(u16())
-        state_defined, state_first = [], []
-        for _ in range(n_states):
-            state_defined.append(mask())
-            state_first.append(u16())
-        targets = [int.from_bytes(raw[pos + i * width:pos + (i + 1) * width], "little") for i in range(n_trans)]
-        pos += n_trans * width
-        probs = None
-        if flags & FLAG_PROBS:
-            probs = [_u16(raw, pos + 2 * i) for i in range(n_trans)]
-            pos += 2 * n_trans
-        names = None
-        if flags & FLAG_NAMES:
-            names = []
-            for _ in range(n_events):
-                size = raw[pos]
-                names.append(raw[pos + 1:pos + 1 + size].decode("ascii"))
-                pos += 1 + size
-        if pos != length - 2:
-            raise ImageError("image sections end at byte %d, the checksum is at byte %d" % (pos, length - 2))
-        return cls(raw, n_events, n_sups, controllable, public, sup_alphabet, sup_first, sup_count,
-                   sup_init, state_defined, state_first, targets, probs, names)
-
-    def event_name(self, event):
-        """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
-        return "EV_" + (self.names[event] if self.names is not None else str(event))
-
-    def event_index(self, name):
-        """Index of an event given as ``EV_x`` or ``x``; KeyError for an unknown name."""
-        if self.names is None:
-            raise KeyError("this image carries no event names: bind events by index")
-        bare = name[3:] if name.startswith("EV_") else name
-        if bare not in self.names:
-            raise KeyError("no event named %r in this supervisor" % name)
-        return self.names.index(bare)
-
-
-def _u16(raw, pos):
-    return raw[pos] | (raw[pos + 1] << 8)
 
 
 def _bits(mask):

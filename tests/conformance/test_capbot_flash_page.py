@@ -18,7 +18,7 @@ import pytest
 from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
-from swarmvm.runtime import python_vm
+from swarmvm.runtime import image_format, python_vm
 from checkout import ROOT
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
@@ -31,6 +31,7 @@ EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 FALLBACK = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 SVM_ERR_LENGTH, SVM_ERR_VERSION, SVM_ERR_CRC, SVM_ERR_LIMITS = 1, 3, 4, 6
 vm = python_vm()
+FORMAT = image_format()
 
 
 @pytest.fixture(scope="module")
@@ -85,10 +86,10 @@ def with_crc(image):
 def over_limits_image(events=33):
     """A valid image with one more event than page_limits.flags allows (1 supervisor, 1 state)."""
     m = (events + 7) // 8
-    body = bytes(2 * m) + bytes(m) + struct.pack("<HHH", 0, 1, 0) + bytes(m) + struct.pack("<H", 0)
-    length = vm.HEADER_SIZE + len(body) + 2
-    header = vm.MAGIC + struct.pack("<BBBBHHBBH", vm.FORMAT_VERSION, 0, events, 1, 1, 0, 1, m, length)
-    return with_crc(header + body + b"\0\0")
+    return FORMAT.assemble(events, 1, 1, 0, 1, {
+        "controllable": bytes(m), "public": bytes(m),
+        "supervisors": bytes(m) + FORMAT.SUPERVISOR_RECORD.pack(0, 1, 0),
+        "states": bytes(m) + FORMAT.STATE_RECORD.pack(0), "targets": b""})
 
 
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])

@@ -111,7 +111,7 @@ def test_report_lists_every_image_and_writes_json(build, tmp_path):
     for row in data["images"]:
         measured = footprint.measure(row["elf"])
         assert row["flash"]["total"] == measured.flash.total and row["vm"] == measured.vm
-    assert "Python VM (runtime_py/swarmvm_vm.py)" in data["source_bytes"]
+    assert "Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)" in data["source_bytes"]
 
 
 @pytest.mark.parametrize("option, reason", [
