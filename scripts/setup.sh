@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Install what swarmvm needs on a fresh Debian machine (idempotent): the cross toolchains and
-# emulators from Debian's packages, then swarmvm itself with its test dependencies from PyPI.
+# emulators from Debian's packages, with what building ARGoS from source needs (cmake, Lua,
+# FreeImage; scripts/argos.sh builds it), then swarmvm itself with its test dependencies from PyPI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang"
+packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang cmake liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
