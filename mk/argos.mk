@@ -4,7 +4,9 @@
 #   make argos-demo   generate the bundled example for the argos target into $(ARGOS_DEMO), build
 #                     the controller with its own CMakeLists.txt against that ARGoS, run the
 #                     generated .argos as it is (6 e-pucks in a walled arena, 300 control steps,
-#                     headless) and print each robot's summary line
+#                     headless), then with an event script in place of the sensors, printing each
+#                     robot's summary line and comparing its trace with swarmvm trace
+#                     (firmware/argos_demo.py)
 # `make test` first runs the find/build step, so the ARGoS tests find it; with no ARGoS and no
 # source archive it goes on (the tests then skip, saying how to get ARGoS) unless CI=true.
 
@@ -21,12 +23,4 @@ argos-for-test:
 	@scripts/argos.sh >/dev/null || { status=$$?; [ $$status -eq 3 ] && [ "$${CI:-}" != true ]; }
 
 argos-demo:
-	@prefix=$$(scripts/argos.sh) && \
-	  mkdir -p $(ARGOS_DEMO) && find $(ARGOS_DEMO) -maxdepth 1 -type f -delete && \
-	  $(SWARMVM) gen $(EXAMPLE) --target argos -o $(ARGOS_DEMO) --name energy_worker >/dev/null && \
-	  cmake -S $(ARGOS_DEMO) -B $(ARGOS_DEMO)/build -DCMAKE_BUILD_TYPE=Release -DARGOS_PREFIX=$$prefix \
-	    >$(ARGOS_DEMO)/cmake.log 2>&1 && cmake --build $(ARGOS_DEMO)/build >>$(ARGOS_DEMO)/cmake.log 2>&1 || \
-	  { cat $(ARGOS_DEMO)/cmake.log; exit 1; }; \
-	  echo "argos-demo: $(ARGOS_DEMO)/energy_worker.argos in ARGoS at $$prefix (log: $(ARGOS_DEMO)/argos.log)"; \
-	  cd $(ARGOS_DEMO) && $(CURDIR)/scripts/argos.sh run -n -c energy_worker.argos -l argos.log -e argos.err || \
-	  { cat argos.err; exit 1; }; grep '^summary ' argos.log
+	@$(PYTHON) firmware/argos_demo.py --example $(EXAMPLE) --name energy_worker --out $(ARGOS_DEMO)

@@ -7,7 +7,8 @@
 //            as "trace <robot id> <line>": the line `swarmvm trace` prints for the same script,
 //            options and seed.
 // - summary: when the controller is destroyed (end of the experiment), LOG one line
-//            "summary <robot id>: N steps, K events fired (EV_a n, ...), V violations".
+//            "summary <robot id>: N steps, K events fired (EV_a n, ...), V violations" (no
+//            parenthesis when none fired).
 // - script:  replay an event script (the text `swarmvm script` writes) instead of the
 //            controller's checks: row k gives the uncontrollable events of step k; past the
 //            last row none occurs. The actions still run. This is test support: it is how the
@@ -79,8 +80,9 @@ public:
             total += fired_count_[e];
             counts += (counts.empty() ? "" : ", ") + vm.image().event_name(e) + " " + std::to_string(fired_count_[e]);
         }
-        argos::LOG << "summary " << id_ << ": " << step_ << " steps, " << total << " events fired (" << counts
-                   << "), " << vm.violations() << " violations" << std::endl;
+        if (!counts.empty()) counts = " (" + counts + ")";
+        argos::LOG << "summary " << id_ << ": " << step_ << " steps, " << total << " events fired" << counts << ", "
+                   << vm.violations() << " violations" << std::endl;
     }
 
 private:

@@ -10,7 +10,7 @@ from argos_project import CORPUS, build, experiment, generate, robot_lines, run_
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]
 
-SUMMARY = re.compile(r"(\d+) steps, (\d+) events fired \((.*)\), (\d+) violations")
+SUMMARY = re.compile(r"(\d+) steps, (\d+) events fired(?: \((.*)\))?, (\d+) violations")
 # A filled-in check: how many neighbours are within 60 cm, modulo 3, equals the check's number.
 NEIGHBOURS = ("return std::count_if(m_pcRABSens->GetReadings().begin(), m_pcRABSens->GetReadings().end(), "
               "[](const argos::CCI_RangeAndBearingSensor::SPacket& s) { return s.Range < 60.0; }) %% 3 == %d;")
