@@ -4,7 +4,7 @@
 # FreeImage; scripts/argos.sh builds it), then swarmvm itself with its test dependencies from PyPI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang cmake liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
+packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang cmake xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
