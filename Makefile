@@ -1,19 +1,37 @@
 # swarmvm: `make demo` runs the main job on the bundled example, `make test` the test suite.
-# Both run `make setup` first (Debian packages and `pip install -e .[test]`, idempotent).
+# Both run `make setup` first (scripts/setup.sh: Debian packages, then the project's own venv
+# .venv/ with `pip install -e .[test]`; idempotent). Every rule runs Python and the CLI from it.
 # Per-area rules (firmware images, emulator runs, benchmarks) live in mk/*.mk.
 
-PYTHON ?= python3
-SWARMVM ?= swarmvm
+VENV ?= .venv
+PYTHON ?= $(VENV)/bin/python
+SWARMVM ?= $(VENV)/bin/swarmvm
 BUILD ?= build
 EXAMPLE ?= examples/energy_worker/supervisor.yaml
 
-.PHONY: setup test demo bench gen firmware footprint clean
+.PHONY: setup test typecheck test-quick demo bench gen firmware footprint golden wheel-check clean
 
 setup:
-	@scripts/setup.sh
+	@VENV=$(VENV) scripts/setup.sh
 
-test: setup
+test: setup typecheck
 	$(PYTHON) -m pytest tests
+
+typecheck: setup
+	$(PYTHON) -m mypy
+
+# The fast part of the suite (no emulator, nothing slow): under a minute.
+test-quick: setup
+	$(PYTHON) -m pytest tests -m "not emulator and not slow"
+
+# Rewrite the golden copies of the example's generated code (tests/golden/) after an intended change.
+golden: setup
+	$(PYTHON) tests/golden/golden.py
+
+# Build the wheel, install it into a fresh venv outside the checkout, compare every verb's output
+# with the editable install's and run the CLI tests against it (scripts/check_wheel.sh).
+wheel-check: setup $(BUILD)/kilobot/energy_worker.elf $(BUILD)/capbot/energy_worker.elf
+	scripts/check_wheel.sh $(VENV)
 
 # Generate every target for the bundled example into build/gen/<target>/.
 gen:

@@ -12,16 +12,18 @@ CMakeLists.txt against real ARGoS (scripts/argos.sh finds it or builds it once) 
 Exit status 1 when ARGoS is missing or fails, or on any difference."""
 
 import argparse
+import os
 import sys
 import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests" / "argos"))
+sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "argos")]
+os.environ["PATH"] = os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"]   # swarmvm beside python
 
-from argos_project import (build, experiment, find_argos, fnv1a, generate, reference_trace,  # noqa: E402
-                           robot_lines, run_argos, write_script)
+from argos_project import (build, experiment, find_argos, generate, reference_trace,  # noqa: E402
+                           robot_lines, robot_seed, run_argos, write_script)
 
 
 def run(project, experiment_file):
@@ -68,7 +70,7 @@ def main():
     log = run(project, experiment(project, "scripted", report={"summary": "true", "trace": "true",
                                                                "script": script.name}))
     differ = [robot for robot, lines in sorted(robot_lines(log, "trace").items())
-              if lines != reference_trace(project, script, random_seed ^ fnv1a(robot), None, robot)]
+              if lines != reference_trace(project, script, robot_seed(random_seed, robot), None, robot)]
     if differ:
         sys.exit("argos-demo: the traces of %s differ from swarmvm trace (see %s)" % (", ".join(differ), out))
     print("every robot's trace identical to the Python VM (swarmvm trace --seed random_seed^FNV-1a(id))")

@@ -1,79 +1,69 @@
-"""The ``swarmvm`` command line: check, pack, gen, script, trace, footprint.
+"""The ``swarmvm`` command line (check, pack, gen, script, trace, footprint, synth, equiv,
+export): a thin layer over :mod:`swarmvm.api`.
 
 Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on stderr and
 exit status 2, before anything is written."""
 
 import functools
-import os
 import sys
+from pathlib import Path
+from typing import Any, Callable
 
 import click
 
-from . import __version__
-from .errors import InputError
-from .pipeline import compile_inputs, compile_spec, load
-from .runtime import python_vm
-from .script import format_script, parse_script, random_script
-from .targets import TARGETS, generate
+from . import __version__, api
+from . import footprint as fp
+from .export import FORMATS
 from .render import write_outputs
+from .runtime import python_vm
 
 vm = python_vm()
 
 
-def reports_errors(command):
+def reports_errors(command: Callable[..., Any]) -> Callable[..., Any]:
     """Turn InputError into the one-line message and exit status 2."""
     @functools.wraps(command)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return command(*args, **kwargs)
-        except InputError as exc:
+        except api.InputError as exc:
             click.echo("swarmvm: error: %s" % exc, err=True)
             sys.exit(2)
     return wrapper
 
 
-def _warn(compiled):
-    for warning in compiled.model.warnings:
+def _warn(warnings: Any) -> None:
+    for warning in warnings:
         click.echo("swarmvm: warning: %s" % warning, err=True)
-
-
-def _load_image(path):
-    try:
-        return vm.Image.load(path)
-    except vm.ImageError as exc:
-        raise InputError(path, "image", str(exc))
-    except OSError as exc:
-        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="swarmvm")
-def main():
+def main() -> None:
     """Compile synthesised supervisors into table-driven VMs for swarm robots."""
 
 
 @main.command()
 @click.argument("files", nargs=-1, required=True)
+@click.option("--properties", is_flag=True,
+              help="Also check each set's design: deadlocks, lost control, dead events, ignored inputs, "
+                   "confluence (docs/models.md).")
 @reports_errors
-def check(files):
-    """Validate supervisors (.yaml, .xml) or table images (.svm) and print their sizes.
+def check(files: tuple[str, ...], properties: bool) -> None:
+    """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
-    rows = []
-    for path in files:
-        if path.endswith(".svm"):
-            image = _load_image(path)
-            counts = (image.num_events, image.num_supervisors, len(image.state_defined), len(image.targets))
-            rows.append((os.path.basename(path),) + counts + (len(image.raw),))
-            continue
-        spec = load([path])
-        _warn(compile_spec(spec, [path]))
-        rows.append((os.path.basename(path),) + spec.counts() + (spec.size_bytes,))
+    if properties:
+        for report in api.check_properties(files):
+            click.echo(report)
+        return
+    rows, warnings = api.check(files)
+    _warn(warnings)
     click.echo("| file | events | supervisors | states | transitions | bytes |")
     click.echo("|---|---|---|---|---|---|")
-    for row in rows:
-        click.echo("| %s | %d | %d | %d | %d | %d |" % row)
+    for r in rows:
+        click.echo("| %s | %d | %d | %d | %d | %d |" % (r.file, r.events, r.supervisors, r.states, r.transitions, r.bytes))
 
 
 @main.command()
@@ -81,56 +71,34 @@ def check(files):
 @click.option("-o", "--output", required=True, help="The .svm file to write.")
 @click.option("--no-names", is_flag=True, help="Leave event names out (callbacks then bind by index).")
 @reports_errors
-def pack(inputs, output, no_names):
+def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
     """Write the portable table image of a supervisor (docs/image-format.md)."""
-    compiled = compile_inputs(inputs, names=not no_names)
-    _warn(compiled)
-    directory, name = os.path.split(os.path.abspath(output))
-    write_outputs(directory, {name: (compiled.image, False)})
+    compiled = api.write_image(inputs, output, names=not no_names)
+    _warn(compiled.model.warnings)
     click.echo("%s: %d bytes" % (output, len(compiled.image)))
 
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("-t", "--target", type=click.Choice(sorted(TARGETS)), required=True)
+@click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)), required=True)
 @click.option("-o", "--output", "outdir", required=True, help="Directory to write into.")
 @click.option("--name", help="Model name for generated files (default: the input's file stem).")
 @click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
               help="Decide the uncontrollable pair YES/NO (e.g. capableTask/notCapableTask) with an "
                    "online classifier on features the application supplies (docs/learning.md). Repeatable.")
 @reports_errors
-def gen(inputs, target, outdir, name, learned):
+def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...]) -> None:
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
 
-    Several Nadzoru 2 XML automata make one set of local supervisors. A controller skeleton
-    that already exists is never overwritten."""
-    compiled = compile_inputs(inputs, name=name)
-    _warn(compiled)
-    pairs = _learned_pairs(inputs[0], compiled.model, target, learned)
-    for path in write_outputs(outdir, generate(compiled, target, learned_checks=pairs)):
+    Several Nadzoru 2 XML automata make one set of local supervisors. Generated files are
+    rewritten on every run; a controller skeleton that already exists is never overwritten,
+    and when its callbacks no longer match the model a warning names them and a fresh
+    skeleton is written beside it as <file>.new."""
+    result = api.generate_target(inputs, target, outdir, name=name, learned=learned)
+    _warn(result.compiled.model.warnings)
+    _warn(d.message() for d in result.drifts)
+    for path in result.written:
         click.echo(path)
-
-
-def _learned_pairs(source, model, target, specs):
-    """``--learned-check YES/NO`` values as [{yes, no}] of bare event names, validated: two
-    distinct uncontrollable events of the model, each in one pair only."""
-    if specs and not TARGETS[target].learned_templates:
-        raise InputError(source, "--learned-check", "target %s does not generate learned checks" % target)
-    pairs, used = [], set()
-    for spec in specs:
-        names = [n[3:] if n.startswith("EV_") else n for n in spec.split("/")]
-        if len(names) != 2 or names[0] == names[1]:
-            raise InputError(source, "--learned-check", "%r is not YES/NO (two different event names)" % spec)
-        for bare in names:
-            if bare not in model.events:
-                raise InputError(source, "--learned-check", "no event named %r" % bare)
-            if model.controllable[model.events.index(bare)]:
-                raise InputError(source, "--learned-check", "%s is controllable: only checks can be learned" % bare)
-            if bare in used:
-                raise InputError(source, "--learned-check", "%s is in two learned checks" % bare)
-            used.add(bare)
-        pairs.append(dict(yes=names[0], no=names[1]))
-    return pairs
 
 
 @main.command()
@@ -140,11 +108,9 @@ def _learned_pairs(source, model, target, specs):
 @click.option("--density", default=0.25, show_default=True, type=click.FloatRange(0, 1),
               help="Chance that an uncontrollable event occurs in a step.")
 @reports_errors
-def script(inputs, steps, seed, density):
+def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> None:
     """Print a reproducible random event script for a supervisor."""
-    compiled = compile_inputs(inputs)
-    rows = random_script(compiled.tables, steps, seed, density)
-    click.echo(format_script(rows, compiled.model.events), nl=False)
+    click.echo(api.make_script(inputs, steps, seed, density), nl=False)
 
 
 @main.command()
@@ -156,26 +122,11 @@ def script(inputs, steps, seed, density):
 @click.option("--control", type=click.Choice(vm.CONTROL_MODES), default="after-inputs", show_default=True)
 @click.option("--policy", type=click.Choice(["uniform", "first", "weighted"]), default="uniform", show_default=True)
 @reports_errors
-def trace(inputs, script_path, seed, input_mode, control, policy):
+def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str, control: str, policy: str) -> None:
     """Run the reference (Python) VM on an event script and print the canonical trace.
 
     INPUTS is a supervisor (.yaml, .xml...) or a table image (.svm)."""
-    if len(inputs) == 1 and inputs[0].endswith(".svm"):
-        image = _load_image(inputs[0])
-    else:
-        compiled = compile_inputs(inputs)
-        _warn(compiled)
-        image = vm.Image.parse(compiled.image)
-    if image.names is None:
-        raise InputError(inputs[0], "image", "carries no event names; scripts name events")
-    try:
-        with open(script_path) as handle:
-            text = handle.read()
-    except OSError as exc:
-        raise InputError(script_path, "", "cannot read file (%s)" % exc.strerror)
-    rows = parse_script(script_path, text, image.names, image.controllable)
-    machine = vm.VM(image, inputs=input_mode, control=control, policy=policy, seed=seed)
-    for line in vm.replay(machine, rows):
+    for line in api.trace(inputs, script_path, seed=seed, input_mode=input_mode, control=control, policy=policy):
         click.echo(line)
 
 
@@ -188,27 +139,78 @@ def trace(inputs, script_path, seed, input_mode, control, policy):
               help="SRAM a Kilobot image must leave for the stack (of 2,048 bytes).")
 @click.option("--vm-limit", default=100000, show_default=True, type=click.IntRange(0),
               help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
-def footprint(elfs, json_path, kilobot_flash, kilobot_stack, vm_limit):
+def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, kilobot_stack: int, vm_limit: int) -> None:
     """Report flash and static RAM of linked VM images, split into VM core, tables and application.
 
     ELFS are linked images named <supervisor>.elf; the target comes from the machine (AVR:
     kilobot, ARM: capbot). Prints Markdown (docs/footprint.md); exits with status 1 and a
     one-line reason when an image exceeds a limit."""
-    from elftools.common.exceptions import ELFError
-
-    from . import footprint as fp
     try:
-        rows = [fp.measure(path) for path in elfs]
-    except (fp.FootprintError, ELFError) as exc:
+        rows = api.measure_footprint(elfs)
+    except fp.FootprintError as exc:
         click.echo("swarmvm: error: %s" % exc, err=True)
         sys.exit(2)
     limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
     click.echo(fp.report_markdown(rows, limits), nl=False)
     if json_path:
-        directory, name = os.path.split(os.path.abspath(json_path))
-        write_outputs(directory, {name: (fp.report_json(rows, limits).encode(), False)})
+        target = Path(json_path).absolute()
+        write_outputs(target.parent, {target.name: (fp.report_json(rows, limits).encode(), False)})
     problems = fp.violations(rows, limits)
     if problems:
         more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
         click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
         sys.exit(1)
+
+
+@main.command()
+@click.argument("models", nargs=-1, required=True)
+@click.option("--script", "script_path", type=click.Path(dir_okay=False),
+              help="Synthesis script (docs/models.md), e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
+@click.option("-e", "--statement", "statements", multiple=True, metavar="STATEMENT",
+              help="A script statement, e.g. 'S = SupC(G, K)' (repeatable; instead of --script).")
+@click.option("--export", "exports", multiple=True, metavar="NAME",
+              help="A result that joins the output set, in order (repeatable; default: the script's export, "
+                   "else every SupC result).")
+@click.option("--minimise", is_flag=True, help="Minimise each output supervisor (libFAUDES StateMin).")
+@click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True)
+@click.option("-o", "--output", required=True,
+              help="yaml: the supervisor.yaml to write; gen: a directory for one .gen per supervisor.")
+@reports_errors
+def synth(models: tuple[str, ...], script_path: str | None, statements: tuple[str, ...], exports: tuple[str, ...],
+          minimise: bool, fmt: str, output: str) -> None:
+    """Synthesise local modular supervisors from plants and specifications (libFAUDES).
+
+    MODELS are automata (.xml, .xmd, .nza, .gen); the script names each by its file stem."""
+    for path in api.synthesise_models(models, script_path, statements, exports, minimise, fmt, output):
+        click.echo(path)
+
+
+@main.command()
+@click.argument("a")
+@click.argument("b")
+@reports_errors
+def equiv(a: str, b: str) -> None:
+    """Do supervisor sets A and B have the same events and the same conjunction language?
+
+    A and B are supervisor files, automata, or directories of automata. Exit status 0 when
+    equivalent; 1 with a shortest distinguishing event sequence when not."""
+    same, report = api.equivalent(a, b)
+    click.echo(report)
+    if not same:
+        sys.exit(1)
+
+
+@main.command()
+@click.argument("inputs", nargs=-1, required=True)
+@click.option("-f", "--format", "fmt", type=click.Choice(FORMATS), required=True)
+@click.option("-o", "--output", required=True, help="yaml: the file to write; gen, dot, svg: a directory.")
+@click.option("--name", help="Stem of the files written (default: the input's file stem).")
+@click.option("--product-limit", default=200, show_default=True, type=click.IntRange(0),
+              help="Draw the product of the supervisors only up to this many states.")
+@reports_errors
+def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, product_limit: int) -> None:
+    """Write a supervisor set as Nadzoru 2 YAML (canonical), libFAUDES .gen, or Graphviz pictures."""
+    compiled, written = api.export(inputs, fmt, output, name=name, product_limit=product_limit)
+    _warn(compiled.model.warnings)
+    for path in written:
+        click.echo(path)

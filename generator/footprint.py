@@ -191,13 +191,10 @@ def violations(footprints, limits=Limits()):
 
 def source_sizes():
     """Bytes of source of each runtime, to compare with the seed's KPI table."""
-    sizes = {"Python VM (runtime_py/swarmvm_vm.py)": RUNTIME_PY.stat().st_size,
-             "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
-                 sum((RUNTIME_C / n).stat().st_size for n in ("swarmvm.c", "swarmvm.h"))}
-    header = RUNTIME_CPP / "swarmvm.hpp"
-    if header.exists():
-        sizes["C++ VM (runtime_cpp/swarmvm.hpp)"] = header.stat().st_size
-    return sizes
+    return {"Python VM (runtime_py/swarmvm_vm.py)": len(RUNTIME_PY.read_bytes()),
+            "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
+                sum(len((RUNTIME_C / n).read_bytes()) for n in ("swarmvm.c", "swarmvm.h")),
+            "C++ VM (runtime_cpp/swarmvm.hpp)": len((RUNTIME_CPP / "swarmvm.hpp").read_bytes())}
 
 
 def report_markdown(footprints, limits=Limits()):

@@ -1,34 +1,15 @@
 """What the Kilobot target (templates/kilobot/) needs computed and checked before rendering.
 
-A Kilobot message carries 9 bytes: the application sends a public event's name as its payload
-(EV_x sends "x", and a received "x" makes EV__x occur), cut to 9 characters. Two public events
-whose message names agree on those 9 characters would be one message on the wire, so the
-model is refused before anything is written."""
+A Kilobot message carries 9 bytes: the application sends a public event's message name
+(swarmvm/naming.py) as its payload, cut to 9 characters, so two messages that agree on those
+characters are refused before anything is written."""
 
-from .errors import InputError
-
-MESSAGE_BYTES = 9
-
-
-def message_name(name, controllable):
-    """The name an event's message carries: an uncontrollable public "_x" receives "x"."""
-    return name[1:] if not controllable and name.startswith("_") else name
+from .naming import event_names, kilobot_messages
 
 
 def prepare(compiled):
-    """Template values of the Kilobot target: ``messages`` (event index -> the name its message
-    carries, for public events) and ``wires`` (the distinct message names, in event order).
-    Raises InputError naming the first two public events whose messages collide."""
-    model = compiled.model
-    messages, seen = {}, {}
-    for i, name in enumerate(model.events):
-        if not model.public[i]:
-            continue
-        wire = message_name(name, model.controllable[i])
-        first = seen.setdefault(wire[:MESSAGE_BYTES], (wire, name))
-        if first[0] != wire:
-            raise InputError(model.source, "events", "public events EV_%s and EV_%s send the same Kilobot message %r "
-                             "(a message carries the first %d characters of the name): rename one"
-                             % (first[1], name, wire[:MESSAGE_BYTES], MESSAGE_BYTES))
-        messages[i] = wire
-    return dict(messages=messages, wires=list(dict.fromkeys(messages.values())))
+    """Template values of the Kilobot target: ``messages`` (event index -> its message name, for
+    public events) and ``wires`` (the distinct message names, in event order)."""
+    events = event_names(compiled.model)
+    wires = kilobot_messages(compiled.model, events)
+    return dict(messages={e.index: e.message for e in events if e.message is not None}, wires=wires)

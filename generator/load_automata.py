@@ -1,16 +1,22 @@
-"""Load source automata (Nadzoru 2 XML, ``<model type="FSA">``) as a set of local supervisors.
+"""Load source automata as a set of local supervisors: Nadzoru 2 XML (``<model type="FSA">``,
+read here), IDES ``.xmd``, Nadzoru ``.nza`` and libFAUDES ``.gen`` (one reader module each).
 
 Each file is one local supervisor whose alphabet is the events it declares. Controllability
 and the ``public`` flag must agree between files that share an event; a ``probability``
 attribute on transitions makes the set probabilistic (as Nadzoru 2's probabilistic plug-in)."""
 
 import os
-import xml.etree.ElementTree as ET
 from fractions import Fraction
 
-from .errors import InputError, read_input
+from .automaton import AutomatonBuilder, read_fsa_xml
+from .errors import InputError
 from .load_supervisor import NAME
-from .model import LocalSupervisor, Supervisors, Transition
+from .model import Supervisors
+from .read_gen import load_gen
+from .read_nza import load_nza
+from .read_xmd import load_xmd
+
+SUFFIXES = (".xml", ".xmd", ".nza", ".gen")
 
 TRUE = {"true": True, "false": False}
 
@@ -32,88 +38,58 @@ def _int_attr(path, element, attribute, where):
 
 
 def load_automaton(path):
-    """One XML file -> (events {name: (controllable, public)}, LocalSupervisor, probabilistic, bytes)."""
-    raw = read_input(path)
-    try:
-        root = ET.fromstring(raw)
-    except ET.ParseError as exc:
-        raise InputError(path, "", "not valid XML: %s" % exc)
-    if root.tag != "model" or root.get("type") != "FSA":
-        raise InputError(path, "model", "expected <model type=\"FSA\"> at the top, got <%s>" % root.tag)
-    data = root.find("data")
-    if data is None:
-        raise InputError(path, "data", "missing <data> element")
+    """One Nadzoru 2 XML file -> :class:`~swarmvm.automaton.AutomatonFile`."""
+    data, size = read_fsa_xml(path)
 
-    states = {}
-    initial = None
+    build = AutomatonBuilder(path)
     for element in data.findall("state"):
         sid = _int_attr(path, element, "id", "state")
-        if sid in states:
-            raise InputError(path, "state", "duplicate state id", "state %d" % sid)
-        states[sid] = len(states)
-        if _flag(path, element, "initial", "state %d" % sid):
-            if initial is not None:
-                raise InputError(path, "state", "a second initial state", "state %d" % sid)
-            initial = sid
-    if not states:
-        raise InputError(path, "state", "the automaton has no states")
-    if initial is None:
-        raise InputError(path, "state", "no initial state")
-
-    events, by_id = {}, {}
+        where = "state %d" % sid
+        marked = _flag(path, element, "marked", where) if element.get("marked") is not None else None
+        build.state(sid, _flag(path, element, "initial", where), marked)
     for element in data.findall("event"):
         eid = _int_attr(path, element, "id", "event")
         name = element.get("name", "")
-        if not NAME.match(name):
-            raise InputError(path, "event", "%r is not an event name (letters, digits and '_')" % name, "event %d" % eid)
-        if name in events:
-            raise InputError(path, "event", "duplicate event name", "event EV_%s" % name)
-        where = "event EV_%s" % name
-        events[name] = (_flag(path, element, "controllable", where), _flag(path, element, "public", where, False))
-        by_id[eid] = name
-
-    table = [[] for _ in states]
-    probabilistic = False
+        where = "event EV_%s" % name if NAME.match(name) else "event %d" % eid
+        build.event(eid, name, _flag(path, element, "controllable", where), _flag(path, element, "public", where, False))
     for element in data.findall("transition"):
         source = _int_attr(path, element, "source", "transition")
         target = _int_attr(path, element, "target", "transition")
         eid = _int_attr(path, element, "event", "transition")
-        if eid not in by_id:
-            raise InputError(path, "transition", "event id %d is not declared" % eid, "state %d" % source)
-        name = by_id[eid]
-        where = "state %d, event EV_%s" % (source, name)
-        for sid in (source, target):
-            if sid not in states:
-                raise InputError(path, "transition", "state id %d is not declared" % sid, where)
-        row = table[states[source]]
-        if any(t.event == name for t in row):
-            raise InputError(path, "transition", "nondeterministic: a second transition on this event", where)
         probability = None
         if element.get("probability") is not None:
-            probabilistic = True
             try:
-                probability = Fraction(element.get("probability"))
+                probability = Fraction(element.get("probability", ""))
             except ValueError:
                 probability = None
             if probability is None or not 0 <= probability <= 1:
-                raise InputError(path, "probability", "%r is not a probability in [0, 1]" % element.get("probability"), where)
-        row.append(Transition(name, states[target], probability))
-    return events, LocalSupervisor(frozenset(events), states[initial], table), probabilistic, len(raw)
+                raise InputError(path, "probability", "%r is not a probability in [0, 1]" % element.get("probability"),
+                                 "state %d" % source)
+        build.transition(source, eid, target, probability)
+    return build.build(size)
+
+
+def read_automaton(path):
+    """Any one-automaton file, by its extension -> :class:`~swarmvm.automaton.AutomatonFile`."""
+    readers = {".xml": load_automaton, ".xmd": load_xmd, ".nza": load_nza, ".gen": load_gen}
+    return readers[os.path.splitext(path)[1].lower()](path)
 
 
 def load_automata(paths):
     """Several XML files -> one :class:`Supervisors` (one local supervisor per file)."""
-    events, supervisors, probabilistic, size = {}, [], False, 0
+    events: dict = {}
+    supervisors: list = []
+    probabilistic, size = False, 0
     for path in paths:
-        declared, supervisor, prob, nbytes = load_automaton(path)
-        for name, flags in declared.items():
+        read = read_automaton(path)
+        for name, flags in read.events.items():
             if name in events and events[name] != flags:
                 what = "controllable" if events[name][0] != flags[0] else "public"
                 raise InputError(path, what, "disagrees with an earlier file on this event", "event EV_%s" % name)
             events.setdefault(name, flags)
-        supervisors.append(supervisor)
-        probabilistic = probabilistic or prob
-        size += nbytes
+        supervisors.append(read.supervisor)
+        probabilistic = probabilistic or read.probabilistic
+        size += read.size_bytes
     if probabilistic:
         for supervisor in supervisors:
             for row in supervisor.states:

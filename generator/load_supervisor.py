@@ -100,7 +100,8 @@ def _parse(r):
     n_events = r.int(doc["num_events"], "num_events", low=1, high=255)
     n_sups = r.int(doc["num_supervisors"], "num_supervisors", low=1, high=255)
 
-    events, seen = [], {}
+    events: list = []
+    seen: dict = {}
     for i, raw in enumerate(r.list("events", n_events, "num_events")):
         if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
             r.fail("events[%d]" % i, "%s is not an event name (letters, digits and '_')" % _show(raw))
@@ -167,7 +168,9 @@ def _parse_block(r, data, start, end, s, index, alphabet):
     if not 0 <= start <= end <= len(data):
         r.fail("sup_data_pos[%d]" % s, "position %d does not start a block inside sup_data (%d entries)"
                % (start, len(data)), "supervisor %d" % s)
-    states, pos, targets = [], start, []
+    states: list = []
+    targets: list = []
+    pos = start
     while pos < end:
         q = len(states)
         where = "supervisor %d, state %d" % (s, q)

@@ -14,10 +14,15 @@ class Transition:
 
 @dataclass
 class LocalSupervisor:
-    """One local supervisor as read: states in file order, transitions in file order."""
+    """One local supervisor as read: states in file order, transitions in file order.
+
+    ``marked`` holds the marked states of a source automaton (plants and specifications need
+    them for non-blocking synthesis); None means every state is marked, as in a compiled
+    supervisor, whose language is closed. The VM ignores marking."""
     alphabet: frozenset
     initial: int
     states: list                 # list[list[Transition]]
+    marked: Optional[frozenset] = None
 
 
 @dataclass

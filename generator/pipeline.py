@@ -7,9 +7,10 @@ from dataclasses import dataclass
 from .canonical import canonicalise
 from .errors import InputError
 from .image import pack
-from .load_automata import load_automata
+from .load_automata import SUFFIXES, load_automata
 from .load_supervisor import load_supervisor
 from .model import Model
+from .naming import model_identifier
 from .tables import Tables, build_tables
 
 
@@ -21,22 +22,38 @@ class Compiled:
     image: bytes
 
 
+def expand_directories(paths):
+    """Each directory among ``paths`` replaced by the automaton files in it, in natural order
+    (``x_2.gen`` before ``x_10.gen``): ``swarmvm export --format gen`` writes a set that way."""
+    out = []
+    for path in paths:
+        if not os.path.isdir(path):
+            out.append(path)
+            continue
+        found = [os.path.join(path, f) for f in os.listdir(path) if os.path.splitext(f)[1].lower() in SUFFIXES]
+        if not found:
+            raise InputError(path, "", "directory holds no automata (%s)" % ", ".join(SUFFIXES))
+        out.extend(sorted(found, key=lambda f: [int(p) if p.isdigit() else p for p in re.split(r"(\d+)", f)]))
+    return out
+
+
 def load(paths):
-    """One supervisor.yaml, or one or more Nadzoru 2 XML automata (one local supervisor each)."""
-    paths = list(paths)
-    xml = [p for p in paths if p.lower().endswith(".xml")]
-    if xml and len(xml) != len(paths):
-        raise InputError(paths[0], "", "give either one supervisor.yaml or XML automata, not both")
-    if not xml and len(paths) != 1:
+    """One supervisor.yaml, or one or more automata (Nadzoru 2 ``.xml``, IDES ``.xmd``, Nadzoru
+    ``.nza``, libFAUDES ``.gen``; one local supervisor each, chosen by file extension; a
+    directory stands for the automata in it)."""
+    paths = expand_directories(paths)
+    automata = [p for p in paths if os.path.splitext(p)[1].lower() in SUFFIXES]
+    if automata and len(automata) != len(paths):
+        raise InputError(paths[0], "", "give either one supervisor.yaml or automata (%s), not both" % ", ".join(SUFFIXES))
+    if not automata and len(paths) != 1:
         raise InputError(paths[1], "", "a compiled supervisor is one file; give one .yaml at a time")
-    return load_automata(paths) if xml else load_supervisor(paths[0])
+    return load_automata(paths) if automata else load_supervisor(paths[0])
 
 
 def model_name(paths, name=None):
-    """The model's name: ``name`` if given, else the first input's file stem, as an identifier."""
-    stem = name or os.path.splitext(os.path.basename(paths[0]))[0]
-    stem = re.sub(r"\W", "_", stem)
-    return "m_" + stem if stem[:1].isdigit() else stem
+    """The model's name: ``name`` if given, else the first input's file stem, as an identifier
+    (naming.model_identifier)."""
+    return model_identifier(name or os.path.splitext(os.path.basename(paths[0]))[0], paths[0])
 
 
 def compile_inputs(paths, name=None, names=True):

@@ -1,29 +1,31 @@
-"""Where the runtimes, templates and firmware live, and the Python VM as a module.
+"""The files swarmvm ships beside its code: templates, runtimes, and the Python VM as a module.
 
-swarmvm is used from its checkout (``pip install -e .``): these folders sit beside
-``generator/`` at the top of the repository."""
+The top-level folders ``templates/``, ``runtime_c/``, ``runtime_cpp/`` and ``runtime_py/`` are
+installed as the packages ``swarmvm.templates``, ``swarmvm.runtime_c``, ... (pyproject.toml's
+``package-dir``), so they are found through :mod:`importlib.resources` in a wheel, an editable
+install and a source checkout alike, never through a path computed from this file."""
 
-import importlib.util
 import sys
 from functools import lru_cache
-from pathlib import Path
+from importlib import import_module, resources
+from importlib.abc import Traversable
+from types import ModuleType
 
-ROOT = Path(__file__).resolve().parent.parent
-TEMPLATES = ROOT / "templates"
-RUNTIME_PY = ROOT / "runtime_py" / "swarmvm_vm.py"
-RUNTIME_LEARN_PY = ROOT / "runtime_py" / "swarmvm_learn.py"
-RUNTIME_C = ROOT / "runtime_c"
-RUNTIME_CPP = ROOT / "runtime_cpp"
-FIRMWARE = ROOT / "firmware"
+TEMPLATES: Traversable = resources.files("swarmvm.templates")
+RUNTIME_C: Traversable = resources.files("swarmvm.runtime_c")
+RUNTIME_CPP: Traversable = resources.files("swarmvm.runtime_cpp")
+RUNTIME_PY_DIR: Traversable = resources.files("swarmvm.runtime_py")
+RUNTIME_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_vm.py"
+RUNTIME_LEARN_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_learn.py"
 
 
 @lru_cache(maxsize=None)
-def python_vm():
-    """The reference Python VM module (runtime_py/swarmvm_vm.py), imported once."""
-    if "swarmvm_vm" in sys.modules:
-        return sys.modules["swarmvm_vm"]
-    spec = importlib.util.spec_from_file_location("swarmvm_vm", RUNTIME_PY)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["swarmvm_vm"] = module
-    spec.loader.exec_module(module)
+def python_vm() -> ModuleType:
+    """The reference Python VM (runtime_py/swarmvm_vm.py).
+
+    It is also registered as the top-level module ``swarmvm_vm``, the name generated Python
+    targets import it by, so that generated code loaded in this process shares its classes
+    (an ``ImageError`` raised there is the one the compiler catches)."""
+    module = sys.modules.get("swarmvm_vm") or import_module("swarmvm.runtime_py.swarmvm_vm")
+    sys.modules.setdefault("swarmvm_vm", module)
     return module

@@ -55,7 +55,12 @@ def _mask(indices):
 
 def build_tables(model):
     """:class:`~swarmvm.model.Model` -> :class:`Tables`."""
-    sup_first, sup_count, defined, first, targets, probs = [], [], [], [], [], []
+    sup_first: list[int] = []
+    sup_count: list[int] = []
+    defined: list[int] = []
+    first: list[int] = []
+    targets: list[int] = []
+    probs: list[int] = []
     for sup in model.supervisors:
         sup_first.append(len(defined))
         sup_count.append(len(sup.states))

@@ -5,10 +5,11 @@ tables and image are the same for all. A file entry is (template, output name, k
 names may use ``{name}``; ``keep`` marks user-edited files that are never overwritten."""
 
 from dataclasses import dataclass, field
+from typing import Callable
 
-from . import kilobot
+from . import __version__, kilobot
 from .render import context, render
-from .runtime import FIRMWARE, RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY
+from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
 
 
 @dataclass(frozen=True)
@@ -18,16 +19,18 @@ class Target:
     copies: tuple = field(default=())    # (source path, output name)
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
-    prepare: object = None               # prepare(compiled) -> extra template values; InputError if unfit
+    prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
 
 
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
     "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
+CAPBOT_RUNTIME_COPIES = C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_logic_page.h", "swarmvm_logic_page.c"))
 
 TARGETS = {
     "python": Target(
-        "Python VM: table module, controller skeleton, the runtime (stdlib only)",
+        "Python VM: table module, app module binding the callbacks, controller skeleton, the runtime (stdlib only)",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
+                   ("python/app.py.j2", "{name}_app.py", False),
                    ("python/controller.py.j2", "{name}_controller.py", True)),
         copies=((RUNTIME_PY, "swarmvm_vm.py"),),
         learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
@@ -41,11 +44,11 @@ TARGETS = {
                    ("argos/experiment.argos.j2", "{name}.argos", True)),
         copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_report.hpp"))),
     "pipuck": Target(
-        "Pi-puck controller (Python): tables, the Python VM, fixed-rate loop, robot adapter (real and --sim)",
+        "Pi-puck controller (Python): tables, the Python VM, robot adapters (real and --sim), fixed-rate app, controller skeleton",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
-                   ("pipuck/robot.py.j2", "pipuck_robot.py", False),
+                   ("pipuck/app.py.j2", "{name}_app.py", False),
                    ("pipuck/controller.py.j2", "{name}_controller.py", True)),
-        copies=((RUNTIME_PY, "swarmvm_vm.py"),)),
+        copies=((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"))),
     "c": Target(
         "C VM (C99, host or microcontroller): tables with the image as a const array, dispatch glue, control loop, Makefile, controller skeleton",
         templates=(("c/tables.h.j2", "{name}_tables.h", False),
@@ -72,8 +75,7 @@ TARGETS = {
                    ("c/tables.h.j2", "src/{name}_tables.h", False),
                    ("c/tables.c.j2", "src/{name}_tables.c", False),
                    ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=tuple((source, "src/" + output) for source, output in C_RUNTIME_COPIES)
-        + tuple((FIRMWARE / "capbot" / n, "src/" + n) for n in ("logic_page.h", "logic_page.c"))),
+        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES)),
 }
 
 
@@ -89,5 +91,12 @@ def generate(compiled, target, **options):
     for template, output, keep in templates:
         files[output.format(name=compiled.name)] = (render(template, values), keep)
     for source, output in copies:
-        files[output.format(name=compiled.name)] = (source.read_bytes(), False)
+        files[output.format(name=compiled.name)] = (copy_banner(output) + source.read_bytes(), False)
     return files
+
+
+def copy_banner(output):
+    """The first line of a runtime file copied into a target: where it comes from, and that
+    ``swarmvm gen`` owns it (rewrites it on every run)."""
+    text = "Copied from the swarmvm %s runtime by swarmvm gen, which rewrites it: do not edit." % __version__
+    return ("# %s\n" % text if output.endswith(".py") else "/* %s */\n" % text).encode("ascii")

@@ -2,7 +2,7 @@
 #   make firmware   also builds $(BUILD)/capbot/energy_worker.elf and .bin (the bundled example)
 #   make emulate    runs that image in QEMU and shows its trace (mk/emulate.mk)
 #   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU)
-# The control-logic flash page (firmware/capbot/logic_page.h, 4 KB at CAPBOT_LOGIC_PAGE):
+# The control-logic flash page (firmware/capbot/swarmvm_logic_page.h, 4 KB at CAPBOT_LOGIC_PAGE):
 #   $(BUILD)/capbot/<name>-logic.hex   a model's image at the page address, Intel HEX, for
 #                                      nrfjprog --program / west flash --hex-file on the robot
 #   $(BUILD)/capbot/logic-vm.elf       the example's application built with the page limits
@@ -22,7 +22,7 @@ CAPBOT_QEMU ?= qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosti
 CAPBOT_FW_SOURCES := $(addprefix $(CAPBOT_FW)/,startup.c app_qemu.c capbot_qemu.c)
 CAPBOT_LOGIC_PAGE := 0x000F3000
 CAPBOT_FW_DEPS := $(CAPBOT_FW_SOURCES) $(addprefix $(CAPBOT_FW)/,capbot.h m4.flags mps2_an386.ld)
-CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py $(CAPBOT_FW)/logic_page.[ch])
+CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py )
 CAPBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
 
 firmware: capbot-firmware

@@ -3,7 +3,7 @@
 #      (mk/kilobot_stream.mk: the trace switches at the swap), and the CapBot application
 #      (mk/capbot.mk) in QEMU, first lines of its trace; the CapBot VM binary logic-vm.elf then
 #      runs another supervisor (uav) written into its control-logic flash page
-#      (firmware/capbot/logic_page.h) from $(BUILD)/capbot/uav-logic.hex;
+#      (firmware/capbot/swarmvm_logic_page.h) from $(BUILD)/capbot/uav-logic.hex;
 #   2. one event script (`swarmvm script --steps $(EMULATE_STEPS) --seed $(EMULATE_SEED)`)
 #      replayed through the conformance harnesses on simavr, QEMU, host C and host C++, each
 #      trace diffed against `swarmvm trace` (the Python VM): one verdict line per target,

@@ -1,5 +1,5 @@
-// ARGoS glue for the swarmvm C++ VM: a generator that draws from ARGoS's CRNG on request, the
-// per-robot seed and the message codes of public events.
+// ARGoS glue for the swarmvm C++ VM: a generator that draws from ARGoS's CRNG on request, and the
+// per-robot VM seed.
 //
 // The default VM generator is the specified xorshift32 (docs/semantics.md), identical on every
 // target. An ARGoS experiment may prefer the simulator's own random stream, seeded by the
@@ -9,7 +9,6 @@
 #define SWARMVM_ARGOS_HPP
 
 #include <cstdint>
-#include <string>
 #include <string_view>
 
 #include <argos3/core/utility/math/rng.h>
@@ -40,26 +39,13 @@ private:
 
 using ArgosVM = BasicVM<ArgosRng>;
 
-// FNV-1a (32 bits) of a text: the robot id in robot_seed, the message name in message_code.
-constexpr std::uint32_t fnv1a(std::string_view text) {
+// The VM seed of the robot `id` in an experiment seeded `seed`: the seed XOR FNV-1a (32 bits)
+// of the id, so that robots sharing a configuration do not all make the same choices, and a
+// robot's choices are reproducible from the seed and its id alone (docs/targets-cpp-python.md).
+inline std::uint32_t robot_seed(std::uint32_t seed, std::string_view id) {
     std::uint32_t hash = 2166136261u;
-    for (char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
-    return hash;
-}
-
-// The VM seed of the robot `id` in an experiment seeded `seed`: the seed XOR FNV-1a of the id,
-// so that robots sharing a configuration do not all make the same choices, and a robot's
-// choices are reproducible from the seed and its id alone (docs/targets-cpp-python.md).
-inline std::uint32_t robot_seed(std::uint32_t seed, const std::string& id) { return seed ^ fnv1a(id); }
-
-// The 16-bit code a public event's message travels as over range-and-bearing: FNV-1a of the
-// message name ("x" for both the sender's EV_x and the receiver's EV__x), folded to 16 bits,
-// never 0 (0 means "no message"). By name, because sender and receiver usually run
-// different supervisors, whose event indices differ.
-constexpr std::uint16_t message_code(std::string_view name) {
-    const std::uint32_t hash = fnv1a(name);
-    const auto code = static_cast<std::uint16_t>((hash >> 16) ^ (hash & 0xFFFFu));
-    return code != 0 ? code : 1;
+    for (char c : id) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+    return seed ^ hash;
 }
 
 }  // namespace swarmvm

@@ -373,3 +373,64 @@ class LearnedPolicy:
         if data.get("format") != "swarmvm-learned-policy":
             raise PolicyError("%s is not a saved learned policy" % path)
         self.from_words(data["words"])
+
+
+class LearnedCheck:
+    """One learned pair of uncontrollable events (docs/learning.md): a pending question, its
+    cached answer and the features of the last "yes"."""
+
+    def __init__(self, classifier):
+        self.classifier = classifier
+        self.pending = None
+        self.answer = None
+        self.polled = set()
+        self.last_yes = None
+        self.decisions = 0
+
+    def offer(self, features):
+        self.pending, self.answer, self.polled = list(features), None, set()
+
+    def poll(self, yes):
+        """The check of the yes (``yes=True``) or no event: both are polled in one step, both
+        see the same answer, and the question is consumed once both have been asked."""
+        if self.pending is None:
+            return False
+        if self.answer is None:
+            self.answer = self.classifier.decide(self.pending)
+            self.decisions += 1
+        self.polled.add(yes)
+        result = self.answer if yes else not self.answer
+        if len(self.polled) == 2:
+            if self.answer:
+                self.last_yes = self.pending
+            self.pending = None
+        return result
+
+    def report_outcome(self, success, features=None):
+        """One online update: label 1 on success, 0 on failure."""
+        features = self.last_yes if features is None else features
+        if features is None:
+            raise ValueError("no decided features to learn from: pass features=")
+        self.classifier.partial_fit(features, 1 if success else 0)
+
+
+class LearnedChecks:
+    """Controller mixin for the learned pairs ``pairs`` ((yes event, no event), ...): a generated
+    subclass adds one ``check_<event>`` per event, bound to the VM like any other check.
+    ``classifiers`` maps each pair's yes event to its classifier."""
+
+    pairs: tuple = ()
+
+    def __init__(self, classifiers):
+        missing = [yes for yes, _ in self.pairs if yes not in (classifiers or {})]
+        if missing:
+            example = ", ".join("%r: swarmvm_learn.LinearClassifier(mean, scale, alpha)" % yes for yes in missing)
+            raise ValueError("learned checks need a classifier each: classifiers={" + example + "}")
+        self.learned = {yes: LearnedCheck(classifiers[yes]) for yes, _ in self.pairs}
+
+    def offer(self, yes_event, features):
+        """Pose the question of a pair (features in the classifier's raw units)."""
+        self.learned[yes_event].offer(features)
+
+    def report_outcome(self, yes_event, success, features=None):
+        self.learned[yes_event].report_outcome(success, features)

@@ -7,7 +7,8 @@ either compiled into a generated module as a bytes literal or read from a ``.svm
 go through :meth:`Image.parse`, so "compiled in" and "loaded" are one code path.
 """
 
-__all__ = ["Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "crc16", "SCT", "SCTPub", "format_trace_line", "replay"]
+__all__ = ["Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16", "SCT", "SCTPub",
+           "format_trace_line", "replay"]
 
 MAGIC = b"SVMI"
 FORMAT_VERSION = 1
@@ -31,6 +32,14 @@ def crc16(data, crc=0xFFFF):
         for _ in range(8):
             crc = (crc >> 1) ^ 0x8408 if crc & 1 else crc >> 1
     return crc
+
+
+def callback_stem(name):
+    """The part of a callback's name that names its event (``on_<stem>``, ``check_<stem>``), in
+    every target: the bare name, except that the receive side of a public event, ``_x``, is
+    ``received_x`` (C++ reserves identifiers with ``__``). The generator names every generated
+    identifier by this rule (swarmvm/naming.py) and refuses models where two events share one."""
+    return "received" + name if name.startswith("_") else name
 
 
 class ImageError(ValueError):
@@ -293,11 +302,12 @@ class VM:
         self._bindings_checked = False
 
     def bind_controller(self, controller):
-        """Bind ``on_<event>`` and ``check_<event>`` methods of an object, by event name."""
+        """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
+        (:func:`callback_stem`: ``check_received_x`` for the message event ``EV__x``)."""
         for e in range(self.num_events):
-            bare = self.image.event_name(e)[3:]
-            action = getattr(controller, "on_" + bare, None)
-            check = getattr(controller, "check_" + bare, None)
+            stem = callback_stem(self.image.event_name(e)[3:])
+            action = getattr(controller, "on_" + stem, None)
+            check = getattr(controller, "check_" + stem, None)
             if not self.image.controllable >> e & 1 or check is None:
                 self.bind(e, action=action, check=check)
             else:
@@ -399,7 +409,7 @@ def replay(vm, rows):
     """Run ``vm`` from reset on an event script (a list of sets of event indices, one per step)
     and return the canonical trace lines. This is the reference conformance harness: the C and
     C++ harnesses do exactly this and must print the same lines."""
-    script = {"row": set()}
+    script: dict = {"row": set()}
     for event in vm.input_order:
         vm.bind(event, check=lambda _data, event=event: event in script["row"])
     vm.reset()

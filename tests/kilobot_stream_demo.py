@@ -1,5 +1,5 @@
 """Stream a new supervisor into a running Kilobot program, in simavr (docs/image-format.md,
-"Streaming an image"). Shared by tests/test_kilobot_swap.py and `make kilobot-swap-demo`.
+"Streaming an image"). Shared by tests/kilobot/test_kilobot_swap.py and `make kilobot-swap-demo`.
 
 The program is the generated Kilobot application of supervisor A built with SVM_STREAM, with a
 test controller: each check follows a fixed pattern of kilo_ticks (``pattern``) and every step
@@ -23,7 +23,9 @@ from conformance import c_harness  # noqa: E402
 from swarmvm.image import chunks  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.render import write_outputs  # noqa: E402
-from swarmvm.runtime import FIRMWARE, python_vm  # noqa: E402
+from swarmvm.naming import callback_stem  # noqa: E402
+from swarmvm.runtime import python_vm  # noqa: E402
+from checkout import FIRMWARE  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
@@ -128,9 +130,10 @@ def controller_source(compiled):
     events = compiled.model.events
     callbacks = []
     for k, e in enumerate(events):
-        callbacks.append("\nvoid %s_on_%s(void)\n{\n    record(EV_%s);\n}\n" % (NAME, e, e))
+        stem = callback_stem(e)
+        callbacks.append("\nvoid %s_on_%s(void)\n{\n    record(EV_%s);\n}\n" % (NAME, stem, e))
         if not compiled.model.controllable[k] and not compiled.model.public[k]:
-            callbacks.append("\nunsigned char %s_check_%s(void)\n{\n    return pattern(EV_%s);\n}\n" % (NAME, e, e))
+            callbacks.append("\nunsigned char %s_check_%s(void)\n{\n    return pattern(EV_%s);\n}\n" % (NAME, stem, e))
     return CONTROLLER % dict(name=NAME, width=max(len(e) for e in events) + 4,
                              names=", ".join('"EV_%s"' % e for e in events), callbacks="".join(callbacks))
 

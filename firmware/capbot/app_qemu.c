@@ -9,7 +9,7 @@
  * ENV_SEED, index mapping of docs/semantics.md: below(4) == 0), on top of what the controller's
  * own check says. The same draw in Python gives the event script of the reference trace.
  *
- * The logic runs from the control-logic flash page when it holds a valid image (logic_page.h):
+ * The logic runs from the control-logic flash page when it holds a valid image (swarmvm_logic_page.h):
  * the compiled-in image is loaded first, then swapped for the page's; a refused page is
  * reported on stderr with its SVM_ERR_* code and the compiled-in logic runs. The controller's
  * actions and checks are matched to the page image's events by name (events it does not
@@ -22,7 +22,7 @@
 #include <stdio.h>
 
 #include "capbot.h"
-#include "logic_page.h"
+#include "swarmvm_logic_page.h"
 #include "swarmvm_trace.h"
 #include SVM_APP_HEADER
 

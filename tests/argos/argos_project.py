@@ -8,9 +8,11 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-CHECKOUT = Path(__file__).resolve().parents[2]
-ARGOS_SH = CHECKOUT / "scripts" / "argos.sh"
-CORPUS = CHECKOUT / "tests" / "corpus" / "openswarm"
+from checkout import ROOT
+from swarmvm.naming import fnv1a
+
+ARGOS_SH = ROOT / "scripts" / "argos.sh"
+CORPUS = ROOT / "tests" / "corpus" / "openswarm"
 NO_ARGOS = 3   # exit status of scripts/argos.sh: no ARGoS and no source archive
 
 
@@ -97,12 +99,10 @@ def robot_lines(log, kind):
     return lines
 
 
-def fnv1a(text):
-    """FNV-1a, 32 bits: the robot id's hash in the controller's VM seed (swarmvm::robot_seed)."""
-    value = 2166136261
-    for byte in text.encode():
-        value = ((value ^ byte) * 16777619) & 0xFFFFFFFF
-    return value
+def robot_seed(seed, robot):
+    """The VM seed of the robot with id `robot` in an experiment seeded `seed`, as the generated
+    controller computes it (swarmvm::robot_seed)."""
+    return seed ^ fnv1a(robot)
 
 
 def write_script(project, steps, seed):

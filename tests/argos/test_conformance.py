@@ -4,7 +4,7 @@ same `swarmvm script` rows in place of its checks (<report script=...>) and prin
 options, and the robot's VM seed: the experiment's random_seed XOR FNV-1a of the robot id."""
 
 import pytest
-from argos_project import experiment, fnv1a, reference_trace, robot_lines, run_argos, write_script
+from argos_project import experiment, reference_trace, robot_lines, robot_seed, run_argos, write_script
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]
 
@@ -26,7 +26,7 @@ def test_every_robot_traces_the_reference(request, built, options):
     assert status == 0, err
     traces = robot_lines(log, "trace")
     assert sorted(traces) == ["ep%d" % i for i in range(ROBOTS)]
-    expected = {robot: reference_trace(project, script, RANDOM_SEED ^ fnv1a(robot), options, robot)
+    expected = {robot: reference_trace(project, script, robot_seed(RANDOM_SEED, robot), options, robot)
                 for robot in traces}
     if built == "network_worker" and options["policy"] == "uniform":   # its choices depend on the seed
         assert len(set(map(tuple, expected.values()))) == ROBOTS

@@ -1,7 +1,7 @@
 """Finding ARGoS: scripts/argos.sh (the prefix it prints, a second call a no-op, exit status 3
 when there is neither an ARGoS nor a source archive, a bad ARGOS_PREFIX refused) and the
-generated CMakeLists.txt (ARGoS found from the argos3 program on PATH, a clear error without
-any ARGoS)."""
+generated CMakeLists.txt (ARGoS found from the argos3 program on PATH or from
+CMAKE_PREFIX_PATH, a clear error without any ARGoS)."""
 
 import os
 import shutil
@@ -42,17 +42,21 @@ def test_bad_argos_prefix_is_refused(tmp_path):
 USUAL = ";".join(p + "/share/argos3/cmake" for p in ("/usr/local", "/usr", "/opt", "/opt/local"))
 
 
-def configure(project, path, tmp_path):
-    """CMake configure of a generated project with only PATH to find ARGoS by (pkg-config
-    looks in an empty folder)."""
-    env = dict(os.environ, ARGOS_PREFIX="", PATH=path, PKG_CONFIG_LIBDIR=str(tmp_path))
+def configure(project, path, tmp_path, *options):
+    """CMake configure of a generated project with only PATH and `options` to find ARGoS by
+    (pkg-config looks in an empty folder)."""
+    env = dict(os.environ, ARGOS_PREFIX="", CMAKE_PREFIX_PATH="", PATH=path, PKG_CONFIG_LIBDIR=str(tmp_path))
     return subprocess.run(["cmake", "-S", str(project.folder), "-B", str(project.folder / "build"),
-                           "-DCMAKE_IGNORE_PATH=" + USUAL], capture_output=True, text=True, env=env)
+                           "-DCMAKE_IGNORE_PATH=" + USUAL, *options], capture_output=True, text=True, env=env)
 
 
-def test_cmake_finds_argos_from_the_program_on_path(argos_prefix, tmp_path):
+@pytest.mark.parametrize("given", ["argos3 on PATH", "CMAKE_PREFIX_PATH"])
+def test_cmake_finds_argos(given, argos_prefix, tmp_path):
     project = generate(CORPUS / "energy_worker.yaml", tmp_path / "project")
-    result = configure(project, "%s:%s" % (argos_prefix / "bin", os.environ["PATH"]), tmp_path)
+    if given == "argos3 on PATH":
+        result = configure(project, "%s:%s" % (argos_prefix / "bin", os.environ["PATH"]), tmp_path)
+    else:
+        result = configure(project, os.environ["PATH"], tmp_path, "-DCMAKE_PREFIX_PATH=%s" % argos_prefix)
     assert result.returncode == 0, result.stderr
     cache = (project.folder / "build" / "CMakeCache.txt").read_text()
     assert "ARGOS_CMAKE_DIR:PATH=%s" % (argos_prefix / "share" / "argos3" / "cmake") in cache

@@ -12,7 +12,8 @@ import re
 import subprocess
 from pathlib import Path
 
-from swarmvm.runtime import FIRMWARE, RUNTIME_C
+from swarmvm.runtime import RUNTIME_C
+from checkout import FIRMWARE
 
 HARNESS = FIRMWARE / "harness"
 CORE_SOURCES = [RUNTIME_C / "swarmvm.c"]

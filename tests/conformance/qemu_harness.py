@@ -8,7 +8,7 @@ import subprocess
 from pathlib import Path
 
 from conformance import c_harness
-from swarmvm.runtime import FIRMWARE
+from checkout import FIRMWARE
 
 CAPBOT = FIRMWARE / "capbot"
 FLAGS = "@%s" % (CAPBOT / "m4.flags")

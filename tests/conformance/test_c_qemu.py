@@ -11,6 +11,8 @@ from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
 
+pytestmark = pytest.mark.emulator   # runs simavr or QEMU
+
 
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])
 def test_qemu_trace_equals_reference(path, tmp_path):

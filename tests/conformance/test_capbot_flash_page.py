@@ -18,7 +18,10 @@ import pytest
 from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
-from swarmvm.runtime import ROOT, python_vm
+from swarmvm.runtime import python_vm
+from checkout import ROOT
+
+pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
 PAGE = 0x000F3000               # mps2_an386.ld: memory region SVM_LOGIC
 CASES_BLOB = 0x00200000         # page_harness.c: CASES_BLOB
@@ -33,7 +36,7 @@ vm = python_vm()
 @pytest.fixture(scope="module")
 def elf(tmp_path_factory):
     """The one harness binary: the generated energy_worker application's src/ (tables,
-    controller, VM, logic_page.c) minus its Zephyr main, the compiled-in image as the fallback."""
+    controller, VM, swarmvm_logic_page.c) minus its Zephyr main, the compiled-in image as the fallback."""
     root = tmp_path_factory.mktemp("capbot_page")
     app = root / "gen"
     subprocess.run(["swarmvm", "gen", str(EXAMPLE), "--target", "capbot", "-o", str(app), "--name", "energy_worker"],

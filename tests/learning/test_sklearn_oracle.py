@@ -57,6 +57,7 @@ def test_seven_epochs_give_the_published_weights():
     assert model.weights == pytest.approx([-7.7631, -7.7633, 7.7624], abs=1e-4)
 
 
+@pytest.mark.slow
 def test_online_stream_of_10000_matches_sklearn_partial_fit():
     model = LinearClassifier(MEAN, SCALE, alpha=0.01)
     model.fit(SEED_POINTS, SEED_LABELS)

@@ -1,6 +1,6 @@
 /*
  * Conformance harness of the CapBot flash-page build, QEMU mps2-an386: one binary for every
- * supervisor. At boot it validates the control-logic page (logic_page.h) and replays the
+ * supervisor. At boot it validates the control-logic page (swarmvm_logic_page.h) and replays the
  * conformance batch against the page's image; when the page is refused it prints the code
  * and replays against the compiled-in fallback (-DSVM_APP=<model>: <model>_image of the
  * generated tables), as the application would run it. The batch's scripts and runs come in a
@@ -14,7 +14,7 @@
  * Output: "@page <code>" (svm_validate of the page, 0 = runs it), then firmware/harness/'s
  * lines (svm_harness.h); "@cases" and exit status 3 when the blob is missing or too wide.
  */
-#include "logic_page.h"
+#include "swarmvm_logic_page.h"
 #include "svm_cases.h"
 #include "svm_harness.h"
 #include SVM_APP_HEADER

@@ -8,7 +8,7 @@ outcomes reported and the classifier's final parameters."""
 import json
 import sys
 
-import uav_controller
+import uav_app
 from drone import MEAN, SCALE, SEED_LABELS, SEED_POINTS, delivery_stream
 from swarmvm_learn import LinearClassifier
 
@@ -16,7 +16,7 @@ from swarmvm_learn import LinearClassifier
 def main(tasks):
     classifier = LinearClassifier(MEAN, SCALE, alpha=0.01)
     classifier.fit(SEED_POINTS, SEED_LABELS)
-    vm = uav_controller.make_vm(classifiers={"capableTask": classifier})
+    vm = uav_app.make_vm(classifiers={"capableTask": classifier})
     world = {"won": False, "back": False}
     vm.bind("wonBid", check=lambda _d: world["won"])
     vm.bind("condReturn", check=lambda _d: world["back"])

@@ -1,0 +1,221 @@
+"""swarmvm's Python API: every verb of the command line as a typed function (docs/api.md).
+
+The command line (``swarmvm.cli``) only parses options, calls these and prints; scripts,
+notebooks and other tools call them directly. Bad input raises :class:`InputError` (one line
+naming file, key and place); nothing here writes a file unless its name says so."""
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Iterator, Sequence
+
+from . import footprint as fp
+from . import properties
+from .equiv import compare, format_difference
+from .errors import InputError, read_input
+from .export import export_files
+from .model import Model
+from .pipeline import Compiled, compile_inputs, compile_spec, load, model_name
+from .properties import format_report
+from .render import write_outputs
+from .runtime import python_vm
+from .script import format_script, parse_script, random_script
+from .synth import models_by_name, synthesise
+from .synth_script import read_synth_script
+from .targets import TARGETS, generate
+from .user_files import Drift, drift
+
+__all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
+           "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "make_script", "trace",
+           "measure_footprint", "check_properties", "equivalent", "export", "write_export", "synthesise_models",
+           "TARGETS"]
+
+if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
+    from runtime_py.swarmvm_vm import Image
+
+_vm = python_vm()
+
+
+@dataclass(frozen=True)
+class CheckRow:
+    """What ``swarmvm check`` prints for one file: counts as read, and the file's size."""
+    file: str
+    events: int
+    supervisors: int
+    states: int
+    transitions: int
+    bytes: int
+
+
+def compile_model(inputs: Sequence[str], name: str | None = None, names: bool = True) -> Compiled:
+    """Load, validate, canonicalise, build tables and pack the image of one supervisor set
+    (one supervisor.yaml, or Nadzoru 2 XML automata)."""
+    return compile_inputs(list(inputs), name=name, names=names)
+
+
+def parse_image(data: bytes, source: str = "<image>") -> "Image":
+    """A table image from bytes, checked (magic, version, checksum, bounds)."""
+    try:
+        return _vm.Image.parse(data)
+    except _vm.ImageError as exc:
+        raise InputError(source, "image", str(exc))
+
+
+def read_image(path: str) -> "Image":
+    """A table image (``.svm``) from a file, checked like :func:`parse_image`."""
+    return parse_image(read_input(path), path)
+
+
+def check(paths: Sequence[str]) -> tuple[list[CheckRow], list[str]]:
+    """Validate each file (supervisor or ``.svm`` image): its row, and the models' warnings."""
+    rows, warnings = [], []
+    for path in paths:
+        name = Path(path).name
+        if path.endswith(".svm"):
+            image = read_image(path)
+            rows.append(CheckRow(name, image.num_events, image.num_supervisors, len(image.state_defined),
+                                 len(image.targets), len(image.raw)))
+            continue
+        spec = load([path])
+        warnings += compile_spec(spec, [path]).model.warnings
+        events, supervisors, states, transitions = spec.counts()
+        rows.append(CheckRow(name, events, supervisors, states, transitions, spec.size_bytes))
+    return rows, warnings
+
+
+def write_image(inputs: Sequence[str], output: str, names: bool = True) -> Compiled:
+    """Compile and write the table image to ``output`` (atomically)."""
+    compiled = compile_model(inputs, names=names)
+    target = Path(output).absolute()
+    write_outputs(target.parent, {target.name: (compiled.image, False)})
+    return compiled
+
+
+def learned_pairs(compiled: Compiled, target: str, specs: Sequence[str]) -> list[dict[str, str]]:
+    """``YES/NO`` specifications of learned checks as [{yes, no}] of bare event names: two
+    distinct uncontrollable events of the model, each in one pair only (docs/learning.md)."""
+    model, source = compiled.model, compiled.model.source
+    if specs and not TARGETS[target].learned_templates:
+        raise InputError(source, "--learned-check", "target %s does not generate learned checks" % target)
+    pairs, used = [], set()
+    for spec in specs:
+        names = [n[3:] if n.startswith("EV_") else n for n in spec.split("/")]
+        if len(names) != 2 or names[0] == names[1]:
+            raise InputError(source, "--learned-check", "%r is not YES/NO (two different event names)" % spec)
+        for bare in names:
+            if bare not in model.events:
+                raise InputError(source, "--learned-check", "no event named %r" % bare)
+            if model.controllable[model.events.index(bare)]:
+                raise InputError(source, "--learned-check", "%s is controllable: only checks can be learned" % bare)
+            if bare in used:
+                raise InputError(source, "--learned-check", "%s is in two learned checks" % bare)
+            used.add(bare)
+        pairs.append(dict(yes=names[0], no=names[1]))
+    return pairs
+
+
+@dataclass(frozen=True)
+class Generated:
+    """What ``generate_target`` did: the compiled model, the paths written, and the kept user
+    files that no longer match the model (user_files.Drift)."""
+    compiled: Compiled
+    written: list[str]
+    drifts: list[Drift]
+
+
+def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str | None = None,
+                    learned: Sequence[str] = ()) -> Generated:
+    """Generate a target's sources into ``outdir`` (all files or none). Files ``gen`` owns are
+    rewritten; user files that exist are kept, and compared with a fresh skeleton: where they
+    drifted, the skeleton is written beside them as ``<file>.new``."""
+    if target not in TARGETS:
+        raise InputError(inputs[0], "--target", "unknown target %r (one of %s)" % (target, ", ".join(sorted(TARGETS))))
+    compiled = compile_model(inputs, name=name)
+    files = generate(compiled, target, learned_checks=learned_pairs(compiled, target, learned))
+    drifts = []
+    for rel, (data, keep) in sorted(files.items()):
+        path = Path(outdir) / rel
+        found = drift(path, data, compiled.name) if keep and path.is_file() else None
+        if found:
+            drifts.append(found)
+            files[rel + ".new"] = (data, False)
+    return Generated(compiled, write_outputs(outdir, files), drifts)
+
+
+def make_script(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> str:
+    """A reproducible random event script (docs/conformance.md) for a supervisor."""
+    compiled = compile_model(inputs)
+    return format_script(random_script(compiled.tables, steps, seed, density), compiled.model.events)
+
+
+def _image_of(inputs: Sequence[str]) -> "Image":
+    if len(inputs) == 1 and inputs[0].endswith(".svm"):
+        return read_image(inputs[0])
+    return _vm.Image.parse(compile_model(inputs).image)
+
+
+def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: str = "level",
+          control: str = "after-inputs", policy: str = "uniform") -> Iterator[str]:
+    """The canonical trace lines of the reference VM replaying an event script.
+
+    ``inputs`` is a supervisor or one ``.svm`` image (which must carry event names)."""
+    image = _image_of(inputs)
+    if image.names is None:
+        raise InputError(inputs[0], "image", "carries no event names; scripts name events")
+    try:
+        text = read_input(script_path).decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(script_path, "", "not UTF-8 text (byte %d)" % exc.start)
+    rows = parse_script(script_path, text, image.names, image.controllable)
+    machine = _vm.VM(image, inputs=input_mode, control=control, policy=policy, seed=seed)
+    return _vm.replay(machine, rows)
+
+
+def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
+    """Flash and static RAM of linked VM images (docs/footprint.md)."""
+    from elftools.common.exceptions import ELFError
+    rows = []
+    for path in elfs:
+        try:
+            rows.append(fp.measure(path))
+        except ELFError as exc:
+            raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
+    return rows
+
+
+def check_properties(paths: Sequence[str]) -> list[str]:
+    """The design checks of each supervisor set (docs/models.md), one report per file."""
+    return [format_report(path, properties.check_properties(compile_model([path]).model)) for path in paths]
+
+
+def equivalent(a: str, b: str) -> tuple[bool, str]:
+    """Whether supervisor sets A and B have the same events and conjunction language, and the
+    report (a shortest distinguishing event sequence when not)."""
+    difference = compare(compile_model([a]).model, compile_model([b]).model)
+    return difference is None, format_difference(a, b, difference)
+
+
+def write_export(model: Model, name: str, fmt: str, output: str, product_limit: int = 200) -> list[str]:
+    """Write a model as ``fmt`` (export.FORMATS): yaml to the file ``output``, the others into
+    the directory ``output``. The paths written."""
+    files = export_files(model, name, fmt, product_limit)
+    if fmt == "yaml":
+        target = Path(output).absolute()
+        return write_outputs(target.parent, {target.name: (files[name + ".yaml"], False)})
+    return write_outputs(output, {rel: (data, False) for rel, data in files.items()})
+
+
+def export(inputs: Sequence[str], fmt: str, output: str, name: str | None = None,
+           product_limit: int = 200) -> tuple[Compiled, list[str]]:
+    """Write a supervisor set as Nadzoru 2 YAML, libFAUDES .gen or Graphviz pictures."""
+    compiled = compile_model(inputs, name=name)
+    return compiled, write_export(compiled.model, compiled.name, fmt, output, product_limit)
+
+
+def synthesise_models(models: Sequence[str], script_path: str | None, statements: Sequence[str],
+                      exports: Sequence[str], minimise: bool, fmt: str, output: str) -> list[str]:
+    """Local modular synthesis (libFAUDES) from plants and specifications by a script
+    (docs/models.md); writes the supervisor set as ``fmt`` and returns the paths written."""
+    script = read_synth_script(script_path, statements)
+    spec = synthesise(script, models_by_name(list(models)), exports, minimise)
+    name = model_name([output]) if fmt == "yaml" else model_name([script.source])
+    return write_export(compile_spec(spec, [script.source]).model, name, fmt, output, 0)

@@ -1,0 +1,147 @@
+"""Parse a Lua table literal as data, never as code.
+
+Nadzoru saves automata (``.nza``) as one Lua table constructor. This reads the literal subset
+only: tables (``{ [k] = v, name = v, v; ... }``), strings in single or double quotes with
+Lua's escapes, decimal and hexadecimal numbers (a leading minus allowed), ``true``,
+``false``, ``nil`` and ``--`` comments. Anything else (a call, an operator, a variable) is a
+syntax error: nothing in the file is ever executed. Tables come back as dicts keyed by the
+Lua keys (positional entries get 1, 2, ...)."""
+
+import re
+from typing import Any, Dict, Optional, Tuple
+
+MAX_DEPTH = 32
+
+TOKEN = re.compile(r"""
+    (?P<space>\s+|--[^\n]*)
+  | (?P<number>0[xX][0-9a-fA-F]+|(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)
+  | (?P<string>"(?:[^"\\\n]|\\.)*"|'(?:[^'\\\n]|\\.)*')
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<punct>[{}\[\]=,;-])
+""", re.VERBOSE | re.DOTALL)
+ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "a": "\a", "b": "\b", "f": "\f", "v": "\v",
+           "\\": "\\", '"': '"', "'": "'", "\n": "\n"}
+CONSTANTS = {"true": True, "false": False, "nil": None}
+
+
+class LuaSyntaxError(ValueError):
+    """The text is not a Lua table literal; ``line`` is where reading stopped."""
+
+    def __init__(self, line: int, message: str):
+        super().__init__("line %d: %s" % (line, message))
+        self.line = line
+
+
+def _unescape(body: str, line: int) -> str:
+    out, i = [], 0
+    while i < len(body):
+        ch = body[i]
+        if ch != "\\":
+            out.append(ch)
+            i += 1
+            continue
+        nxt = body[i + 1]
+        if nxt.isdigit():
+            found = re.match(r"[0-9]{1,3}", body[i + 1:])
+            digits = found.group() if found else nxt
+            if int(digits) > 255:
+                raise LuaSyntaxError(line, "escape \\%s is out of range" % digits)
+            out.append(chr(int(digits)))
+            i += 1 + len(digits)
+        elif nxt in ESCAPES:
+            out.append(ESCAPES[nxt])
+            i += 2
+        else:
+            raise LuaSyntaxError(line, "unknown escape \\%s in a string" % nxt)
+    return "".join(out)
+
+
+def _tokens(text: str):
+    pos, line = 0, 1
+    while pos < len(text):
+        match = TOKEN.match(text, pos)
+        if match is None:
+            raise LuaSyntaxError(line, "unexpected character %r" % text[pos])
+        kind, value = match.lastgroup, match.group()
+        if kind != "space":
+            yield kind, value, line
+        line += value.count("\n")
+        pos = match.end()
+    yield "end", "", line
+
+
+class _Parser:
+    def __init__(self, text: str):
+        self.tokens = list(_tokens(text))
+        self.pos = 0
+
+    def peek(self) -> Tuple[str, str, int]:
+        return self.tokens[self.pos]
+
+    def take(self, value: Optional[str] = None):
+        kind, text, line = self.tokens[self.pos]
+        if value is not None and text != value:
+            raise LuaSyntaxError(line, "expected %r, found %r" % (value, text or "end of file"))
+        self.pos += 1
+        return kind, text, line
+
+    def value(self, depth: int) -> Any:
+        kind, text, line = self.take()
+        if text == "{":
+            return self.table(depth + 1, line)
+        if text == "-" and self.peek()[0] == "number":
+            return -self.number(self.take()[1])
+        if kind == "number":
+            return self.number(text)
+        if kind == "string":
+            return _unescape(text[1:-1], line)
+        if kind == "name" and text in CONSTANTS:
+            return CONSTANTS[text]
+        raise LuaSyntaxError(line, "expected a value, found %r" % (text or "end of file"))
+
+    @staticmethod
+    def number(text: str):
+        if text[:2].lower() == "0x":
+            return int(text, 16)
+        return float(text) if any(c in text for c in ".eE") else int(text)
+
+    def table(self, depth: int, line: int) -> Dict[Any, Any]:
+        if depth > MAX_DEPTH:
+            raise LuaSyntaxError(line, "tables nested deeper than %d" % MAX_DEPTH)
+        out: Dict[Any, Any] = {}
+        position = 1
+        while self.peek()[1] != "}":
+            kind, text, at = self.peek()
+            if text == "[":
+                self.take()
+                key = self.value(depth)
+                self.take("]")
+                self.take("=")
+            elif kind == "name" and text not in CONSTANTS and self.tokens[self.pos + 1][1] == "=":
+                key = text
+                self.pos += 2
+            else:
+                key, position = position, position + 1
+            if key is None or key in out:
+                raise LuaSyntaxError(at, "key %r is nil or given twice" % (key,))
+            out[key] = self.value(depth)
+            if self.peek()[1] in (",", ";"):
+                self.take()
+            elif self.peek()[1] != "}":
+                raise LuaSyntaxError(self.peek()[2], "expected ',' or '}', found %r" % (self.peek()[1] or "end of file"))
+        self.take("}")
+        return out
+
+
+def parse_lua_table(text: str) -> Dict[Any, Any]:
+    """The table a file's single table constructor denotes (an optional ``return`` first)."""
+    parser = _Parser(text)
+    if parser.peek()[1] == "return":
+        parser.take()
+    kind, first, line = parser.take()
+    if first != "{":
+        raise LuaSyntaxError(line, "expected a table constructor '{', found %r" % (first or "end of file"))
+    table = parser.table(1, line)
+    if parser.peek()[0] != "end":
+        raise LuaSyntaxError(parser.peek()[2], "unexpected %r after the table" % parser.peek()[1])
+    return table

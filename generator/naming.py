@@ -1,0 +1,131 @@
+"""One naming rule for everything swarmvm generates, on every target.
+
+Event and model names come from files other people wrote; every identifier and message the
+generated code uses is derived from them here, once, and checked for collisions before anything
+is written:
+
+- callbacks: ``<kind>_<stem>`` with the runtime's :func:`callback_stem` (``_x`` -> ``received_x``),
+  in C prefixed by the model name (``<model>_on_<stem>``), in C++ capitalised (``On_<stem>``);
+- messages: a public event travels as its *message name*, the event name without the leading
+  ``_`` of the receive side (``EV_x`` sends "x", ``EV__x`` receives it). Kilobot messages carry
+  its first 9 characters, ARGoS range-and-bearing packets a 16-bit :func:`message_code`, Pi-puck
+  broadcasts the whole name;
+- the model name prefixes generated files, types and functions, so it must be an ASCII
+  identifier that no language or runtime keeps for itself."""
+
+import keyword
+import re
+from dataclasses import dataclass
+
+from .errors import InputError
+from .model import Model
+from .runtime import python_vm
+
+callback_stem = python_vm().callback_stem
+
+KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
+
+_C_CPP_KEYWORDS = frozenset("""
+alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t char32_t
+class compl concept const consteval constexpr constinit const_cast continue co_await co_return co_yield
+decltype default delete do double dynamic_cast else enum explicit export extern false float for friend
+goto if inline int long mutable namespace new noexcept not not_eq nullptr operator or or_eq private
+protected public register reinterpret_cast requires restrict return short signed sizeof static
+static_assert static_cast struct switch template this thread_local throw true try typedef typeid
+typename union unsigned using virtual void volatile wchar_t while xor xor_eq
+NULL EOF main errno assert offsetof bool true false
+""".split())
+# Prefixes the runtimes own: a model named like them would redefine runtime symbols.
+_RUNTIME_PREFIXES = ("svm", "swarmvm", "kilo")
+
+
+def model_identifier(stem: str, source: str) -> str:
+    """The model name as used in generated identifiers and file names: ``stem`` with every
+    character outside [A-Za-z0-9_] made ``_`` and ``m_`` before a leading digit. InputError when
+    the result is a keyword of C, C++ or Python or starts like the runtimes' own symbols."""
+    name = re.sub(r"[^A-Za-z0-9_]", "_", stem)
+    name = "m_" + name if name[:1].isdigit() else name
+    lowered = name.lower()
+    if not name or name in _C_CPP_KEYWORDS or keyword.iskeyword(name):
+        raise InputError(source, "--name", "model name %r is reserved in C, C++ or Python: give another with --name" % name)
+    if any(lowered == p or lowered.startswith(p + "_") for p in _RUNTIME_PREFIXES):
+        raise InputError(source, "--name", "model name %r collides with the runtime's own %s_* symbols: "
+                         "give another with --name" % (name, name.split("_")[0]))
+    return name
+
+
+def message_name(name: str, controllable: bool) -> str:
+    """The message a public event sends (controllable) or receives (uncontrollable ``_x``)."""
+    return name[1:] if not controllable and name.startswith("_") else name
+
+
+def fnv1a(text: str) -> int:
+    """FNV-1a (32 bits) of a text: message codes here, and the ARGoS controller's per-robot VM
+    seed (random seed XOR FNV-1a of the robot id, swarmvm::robot_seed in swarmvm_argos.hpp)."""
+    value = 2166136261
+    for byte in text.encode("utf-8"):
+        value = ((value ^ byte) * 16777619) & 0xFFFFFFFF
+    return value
+
+
+def message_code(message: str) -> int:
+    """16-bit code of a message on ARGoS's range-and-bearing: FNV-1a of the name folded to 16
+    bits; 0 means "no message" on the wire, so it becomes 1."""
+    value = fnv1a(message)
+    return ((value >> 16) ^ (value & 0xFFFF)) or 1
+
+
+@dataclass(frozen=True)
+class EventNames:
+    """Every name one event gets in generated code."""
+    index: int
+    name: str                  # bare name, as in the model
+    const: str                 # EV_<name>
+    stem: str                  # callback stem
+    controllable: bool
+    public: bool
+    message: str | None        # message name of a public event
+    code: int | None           # its 16-bit ARGoS code
+
+
+def event_names(model: Model) -> list[EventNames]:
+    """The names of every event, in model order; InputError naming the two events when two
+    callbacks or two message codes would be one."""
+    result: list[EventNames] = []
+    stems: dict[str, str] = {}
+    codes: dict[int, str] = {}
+    for i, name in enumerate(model.events):
+        controllable, public = bool(model.controllable[i]), bool(model.public[i])
+        stem = callback_stem(name)
+        if "__" in stem:
+            raise InputError(model.source, "events", "C++ reserves identifiers with '__': rename the event",
+                             "event EV_%s" % name)
+        other = stems.setdefault(stem, name)
+        if other != name:
+            raise InputError(model.source, "events", "EV_%s and EV_%s would both have the callbacks *_%s: rename one"
+                             % (other, name, stem), "event EV_%s" % name)
+        message = message_name(name, controllable) if public else None
+        code = message_code(message) if message is not None else None
+        if message is not None and code is not None:
+            first = codes.setdefault(code, message)
+            if first != message:
+                raise InputError(model.source, "events", "messages %r and %r have the same 16-bit ARGoS code %d: rename one"
+                                 % (first, message, code), "event EV_%s" % name)
+        result.append(EventNames(i, name, "EV_" + name, stem, controllable, public, message, code))
+    return result
+
+
+def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:
+    """The distinct message names of a Kilobot application, in event order; InputError when two
+    of them agree on the 9 bytes a Kilobot message carries."""
+    seen: dict[str, EventNames] = {}
+    for e in events:
+        if e.message is None:
+            continue
+        first = seen.setdefault(e.message[:KILOBOT_MESSAGE_BYTES], e)
+        if first.message != e.message:
+            raise InputError(model.source, "events", "%s and %s use the messages %r and %r, one Kilobot message %r "
+                             "(a message carries the first %d characters of the name): rename one"
+                             % (first.const, e.const, first.message, e.message, e.message[:KILOBOT_MESSAGE_BYTES],
+                                KILOBOT_MESSAGE_BYTES), "event %s" % e.const)
+    return list(dict.fromkeys(e.message for e in events if e.message is not None))

@@ -1,0 +1,132 @@
+"""Design checks on a supervisor set, read from the product of its local supervisors (the
+conjunction; :mod:`swarmvm.product`). Each finding carries a shortest event sequence that
+reaches it, so the designer can replay it with ``swarmvm trace``. Definitions (docs/models.md):
+
+- **deadlock**: a reachable product state where no event at all can occur;
+- **no control again**: a reachable state from which no controllable event can ever fire
+  again, whatever happens (no state reachable from it enables one);
+- **never occurs**: an event of the set that labels no reachable product transition;
+- **ignored input**: a reachable state and an uncontrollable event that some supervisor
+  holding the event allows there while another supervisor holding it has no transition: if
+  it occurs, the VM must leave that supervisor where it is and count a model violation;
+- **not confluent**: a reachable state with two enabled controllable events a and b where the
+  choice matters: after a, b is not enabled, or after b, a is not, or a-then-b and b-then-a
+  end in different states. Where every such pair commutes, the policy's choice only reorders
+  events and cannot change where the robot ends up."""
+
+from dataclasses import dataclass
+from typing import List, Tuple
+
+from .model import Model
+from .product import Product, build_product
+
+
+@dataclass(frozen=True)
+class Finding:
+    check: str
+    detail: str
+    word: Tuple[str, ...]        # shortest event sequence to the state concerned
+
+
+@dataclass(frozen=True)
+class Report:
+    states: int
+    findings: Tuple[Finding, ...]
+
+    def of(self, check: str) -> List[Finding]:
+        return [f for f in self.findings if f.check == check]
+
+
+CHECKS = ("deadlock", "no control again", "never occurs", "ignored input", "not confluent")
+
+
+def _names(model: Model, events) -> Tuple[str, ...]:
+    return tuple(model.events[e] for e in events)
+
+
+def _no_control_again(model: Model, product: Product) -> List[int]:
+    """States from which no state enabling a controllable event is reachable."""
+    can = {q for q, row in enumerate(product.edges) if any(model.controllable[e] for e, _ in row)}
+    predecessors: list[list[int]] = [[] for _ in product.vectors]
+    for q, row in enumerate(product.edges):
+        for _, t in row:
+            predecessors[t].append(q)
+    stack = list(can)
+    while stack:
+        for p in predecessors[stack.pop()]:
+            if p not in can:
+                can.add(p)
+                stack.append(p)
+    return [q for q in range(len(product.vectors)) if q not in can]
+
+
+def _ignored_inputs(model: Model, product: Product) -> List[Finding]:
+    out, seen = [], set()
+    for q, vector in enumerate(product.vectors):
+        for event in range(len(model.events)):
+            if model.controllable[event]:
+                continue
+            holders = [s for s, sup in enumerate(model.supervisors) if event in sup.alphabet]
+            defined = [s for s in holders if any(e == event for e, _, _ in model.supervisors[s].states[vector[s]])]
+            for s in holders:
+                if defined and s not in defined and (event, s) not in seen:
+                    seen.add((event, s))
+                    out.append(Finding("ignored input", "EV_%s: supervisor %d has no transition in state %d (supervisor %d has)"
+                                       % (model.events[event], s, vector[s], defined[0]), _names(model, product.word(q))))
+    return out
+
+
+def _not_confluent(model: Model, product: Product) -> List[Finding]:
+    """One finding per pair of events, at the first (breadth-first: nearest) state."""
+    out, seen = [], set()
+    for q, row in enumerate(product.edges):
+        after = {e: t for e, t in row if model.controllable[e]}
+        for a in sorted(after):
+            for b in sorted(after):
+                if b <= a or (a, b) in seen:
+                    continue
+                ab = dict(product.edges[after[a]]).get(b)
+                ba = dict(product.edges[after[b]]).get(a)
+                if ab is not None and ba is not None and ab == ba:
+                    continue
+                if ab is None or ba is None:
+                    first, second = (a, b) if ab is None else (b, a)
+                    why = "EV_%s disables EV_%s" % (model.events[first], model.events[second])
+                else:
+                    why = "the two orders end in different states"
+                seen.add((a, b))
+                out.append(Finding("not confluent", "EV_%s or EV_%s: %s" % (model.events[a], model.events[b], why),
+                                   _names(model, product.word(q))))
+    return out
+
+
+def check_properties(model: Model, limit: int = 1_000_000) -> Report:
+    """Every check of this module on ``model``'s product (at most ``limit`` states)."""
+    product = build_product(model, limit)
+    findings = [Finding("deadlock", "no event can occur in product state (%s)" % ",".join(map(str, product.vectors[q])),
+                        _names(model, product.word(q)))
+                for q, row in enumerate(product.edges) if not row]
+    findings += [Finding("no control again", "from product state (%s) no controllable event can fire again"
+                         % ",".join(map(str, product.vectors[q])), _names(model, product.word(q)))
+                 for q in _no_control_again(model, product)]
+    used = {e for row in product.edges for e, _ in row}
+    findings += [Finding("never occurs", "EV_%s labels no reachable transition of the product" % model.events[e], ())
+                 for e in range(len(model.events)) if e not in used]
+    findings += _ignored_inputs(model, product)
+    findings += _not_confluent(model, product)
+    return Report(len(product.vectors), tuple(findings))
+
+
+def format_report(name: str, report: Report, examples: int = 3) -> str:
+    """The report as Markdown: per check, the number of findings and the first few, each with
+    the shortest event sequence that reaches it."""
+    lines = ["## %s: product of %d state(s)" % (name, report.states)]
+    for check in CHECKS:
+        found = report.of(check)
+        lines.append("- %s: %s" % (check, "none" if not found else len(found)))
+        for finding in found[:examples]:
+            after = " after %s" % " ".join("EV_" + e for e in finding.word) if finding.word else ""
+            lines.append("  - %s%s" % (finding.detail, after))
+        if len(found) > examples:
+            lines.append("  - ... and %d more" % (len(found) - examples))
+    return "\n".join(lines) + "\n"

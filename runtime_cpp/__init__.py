@@ -1,0 +1,1 @@
+"""Package data: the header-only C++17 runtime, copied into generated ARGoS targets."""

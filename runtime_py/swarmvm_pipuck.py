@@ -1,0 +1,144 @@
+"""swarmvm on the Pi-puck: robot adapters (the real robot and a simulation) and the
+fixed-rate control loop. Copied as it is into every generated Pi-puck target.
+
+The controller talks to the robot only through a few methods, so it runs unchanged on the
+Pi-puck and on a laptop (``--sim``): ``begin_step``, ``event_occurred``, ``received``,
+``set_motors``, ``set_leds``, ``broadcast``, ``stop``.
+"""
+
+import json
+import socket
+import time
+
+import swarmvm_vm
+
+# Public events travel as UDP broadcasts of the message name on the robots' Wi-Fi network.
+MESSAGE_PORT = 47474
+
+
+class PiPuckRobot:
+    """The Pi-puck through the ``pipuck`` library (PyPI), imported on first use.
+
+    The library opens I2C and GPIO (``smbus``, ``RPi.GPIO``) when it is imported, which fails
+    anywhere but on the robot: importing it here, not at module level, keeps the controller
+    importable (and testable) on any machine."""
+
+    def __init__(self, epuck_version=2):
+        try:
+            from pipuck.pipuck import PiPuck
+        except ImportError as exc:
+            raise SystemExit("the pipuck library is not available (%s): run on the Pi-puck, "
+                             "or use --sim on other machines" % exc)
+        self._pipuck = PiPuck(epuck_version=epuck_version)
+        self._socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_BROADCAST, 1)
+        self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        self._socket.bind(("", MESSAGE_PORT))
+        self._socket.setblocking(False)
+        self._heard = set()
+
+    def begin_step(self, number):
+        """Collect the messages that arrived since the previous step."""
+        self._heard = set()
+        while True:
+            try:
+                data, _sender = self._socket.recvfrom(256)
+            except BlockingIOError:
+                return
+            self._heard.add(json.loads(data.decode("utf-8")).get("message"))
+
+    def event_occurred(self, event):
+        """Placeholder for a sensor reading: the controller's checks replace it."""
+        return False
+
+    def received(self, message):
+        return message in self._heard
+
+    def set_motors(self, left, right):
+        """Wheel speeds in e-puck steps/s (-1000..1000)."""
+        self._pipuck.epuck.set_motor_speeds(int(left), int(right))
+
+    def set_leds(self, colour):
+        """All three Pi-puck RGB LEDs: off, red, green, yellow, blue, magenta, cyan or white."""
+        self._pipuck.set_leds_colour(colour)
+
+    def broadcast(self, message):
+        payload = json.dumps({"message": message}).encode("utf-8")
+        self._socket.sendto(payload, ("<broadcast>", MESSAGE_PORT))
+
+    def stop(self):
+        self.set_motors(0, 0)
+        self.set_leds("off")
+
+
+class SimRobot:
+    """A simulated Pi-puck for tests and laptops.
+
+    Motor, LED and message commands are printed as ``sim ...`` lines. Uncontrollable events
+    (and received messages, ``EV__x``) come from an event script (docs/conformance.md): row
+    ``n`` lists the events whose checks return true at step ``n``; without a script they never
+    occur."""
+
+    def __init__(self, rows=(), log=print):
+        self._rows = list(rows)
+        self._row: frozenset = frozenset()
+        self._log = log
+
+    @staticmethod
+    def read_script(path, events):
+        """Rows (sets of ``EV_`` names) of an event script; unknown names are an error."""
+        rows = []
+        with open(path) as handle:
+            for number, line in enumerate(handle, 1):
+                line = line.strip()
+                if not line or line.startswith("#"):
+                    continue
+                names = frozenset() if line == "-" else frozenset(line.split())
+                unknown = sorted(names - set(events))
+                if unknown:
+                    raise SystemExit("%s:%d: unknown event %s" % (path, number, unknown[0]))
+                rows.append(names)
+        return rows
+
+    def begin_step(self, number):
+        self._row = self._rows[number - 1] if number <= len(self._rows) else frozenset()
+
+    def event_occurred(self, event):
+        return event in self._row
+
+    def received(self, message):
+        return "EV__" + message in self._row
+
+    def set_motors(self, left, right):
+        self._log("sim motors %d %d" % (left, right))
+
+    def set_leds(self, colour):
+        self._log("sim leds %s" % colour)
+
+    def broadcast(self, message):
+        self._log("sim broadcast %s" % message)
+
+    def stop(self):
+        self.set_motors(0, 0)
+        self.set_leds("off")
+
+
+def run(vm, robot, period=0.1, steps=None, trace=False):
+    """Step the VM at a fixed rate, every ``period`` seconds (forever, or ``steps`` times).
+
+    Deadlines advance by ``period`` from the start, so a slow step does not shift the ones
+    after it. With ``trace`` every step prints its canonical trace line (docs/conformance.md)."""
+    deadline = time.monotonic()
+    number = 0
+    try:
+        while steps is None or number < steps:
+            number += 1
+            robot.begin_step(number)
+            fired = vm.step()
+            if trace:
+                names = [vm.image.event_name(e) for e in fired]
+                print(swarmvm_vm.format_trace_line(number, names, vm.states, vm.violations), flush=True)
+            deadline += period
+            time.sleep(max(0.0, deadline - time.monotonic()))
+    finally:
+        robot.stop()

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The installed product, as a new user gets it: build the wheel from this checkout, install it
+# into a fresh venv outside the checkout, run every verb from an unrelated directory with the
+# wheel's CLI and with the editable install's, and require identical output; then run the CLI
+# tests against the wheel's install. Usage: scripts/check_wheel.sh [EDITABLE_VENV]
+# (`make wheel-check`; footprint needs build/*/energy_worker.elf: `make firmware` first).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+editable="$(cd "${1:-$root/.venv}" && pwd)"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+"$editable/bin/python" -m build --wheel --outdir "$work/dist" "$root" >"$work/build.log" 2>&1 \
+  || { cat "$work/build.log"; exit 1; }
+python3 -m venv "$work/venv"
+"$work/venv/bin/python" -m pip install -q --disable-pip-version-check "$work"/dist/swarmvm-*.whl pytest
+echo "wheel-check: installed $(basename "$work"/dist/swarmvm-*.whl) into a fresh venv"
+
+example="$root/examples/energy_worker/supervisor.yaml"
+elfs=("$root/build/kilobot/energy_worker.elf" "$root/build/capbot/energy_worker.elf")
+# One run of every verb, in the current directory, with the CLI given as $1.
+verbs() {
+  local cli="$1"
+  "$cli" --version
+  "$cli" check "$example" "$root"/tests/corpus/openswarm/*.yaml
+  "$cli" pack "$example" -o logic.svm && "$cli" check logic.svm
+  for target in $("$(dirname "$cli")/python" -c "from swarmvm.targets import TARGETS; print(*sorted(TARGETS))"); do
+    "$cli" gen "$example" --target "$target" -o "gen/$target" --name energy_worker
+  done
+  "$cli" script "$example" --steps 30 --seed 3 > script.txt && cat script.txt
+  "$cli" trace "$example" --script script.txt --seed 7
+  "$cli" trace logic.svm --script script.txt --seed 7 --policy first
+  "$cli" footprint "${elfs[@]}"
+}
+for install in editable wheel; do
+  mkdir -p "$work/run-$install"
+  cli="$editable/bin/swarmvm"; [ "$install" = wheel ] && cli="$work/venv/bin/swarmvm"
+  (cd "$work/run-$install" && verbs "$cli" > stdout.txt 2>&1) \
+    || { echo "wheel-check: the $install install failed:"; tail -n 20 "$work/run-$install/stdout.txt"; exit 1; }
+done
+diff -r "$work/run-editable" "$work/run-wheel" \
+  || { echo "wheel-check: the wheel's output differs from the editable install's"; exit 1; }
+echo "wheel-check: every verb gives identical output from the wheel and the editable install" \
+  "($(ls "$work/run-wheel/gen" | wc -l) targets generated)"
+(cd "$work" && "$work/venv/bin/python" -m pytest -q -p no:cacheprovider --rootdir "$root" "$root/tests/cli")

@@ -1,0 +1,82 @@
+"""swarmvm equiv: same events and same language of the conjunction, up to state renaming and
+split into local supervisors; a shortest distinguishing sequence otherwise. libFAUDES'
+LanguageEquality on the conjunctions is the oracle."""
+
+import itertools
+
+import faudes
+import pytest
+
+from conftest import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
+from swarmvm.equiv import compare
+from swarmvm.pipeline import compile_inputs
+from swarmvm.product import step
+
+
+def model(path):
+    return compile_inputs([str(path)]).model
+
+
+def accepts(m, word):
+    vector = tuple(0 for _ in m.supervisors)
+    for name in word:
+        vector = step(m, vector, m.events.index(name))
+        if vector is None:
+            return False
+    return True
+
+
+def test_a_set_is_equivalent_to_its_source_automata_in_a_directory(tmp_path):
+    for path in sorted((CORPUS / "automata").glob("energy_worker_Sloc?.xml")):
+        (tmp_path / path.name).write_bytes(path.read_bytes())
+    result = run("equiv", ENERGY_WORKER, tmp_path)
+    assert result.exit_code == 0 and result.stdout.startswith("equivalent")
+    result = run("equiv", ENERGY_WORKER, tmp_path / "energy_worker_Sloc1.xml")
+    assert result.exit_code == 1          # one local supervisor is not the whole set
+
+
+def test_a_removed_transition_is_found_with_a_shortest_sequence(tmp_path):
+    text = ENERGY_WORKER.read_text()
+    # Supervisor 0's state 1 (in file order): moveToWork now loops back instead of moving on.
+    changed = text.replace("3,EV_highEnergy,0,1,EV_moveToWork,0,2,EV_lowEnergy,0,0",
+                           "3,EV_highEnergy,0,1,EV_moveToWork,0,1,EV_lowEnergy,0,0", 1)
+    assert changed != text
+    path = tmp_path / "changed.yaml"
+    path.write_text(changed)
+    result = run("equiv", ENERGY_WORKER, path)
+    assert result.exit_code == 1
+    lines = result.stdout.splitlines()
+    assert lines[0] == "not equivalent: the conjunctions' languages differ"
+    word = lines[1].split(": ", 1)[1].split(" (")[0].split()
+    names = [w[3:] for w in word]
+    a, b = model(ENERGY_WORKER), model(path)
+    if accepts(b, names):
+        a, b = b, a
+        assert lines[1].endswith("(allowed by %s, not by %s)" % (path, ENERGY_WORKER))
+    else:
+        assert lines[1].endswith("(allowed by %s, not by %s)" % (ENERGY_WORKER, path))
+    assert accepts(a, names) and not accepts(b, names) and accepts(b, names[:-1])
+    # Shortest: no shorter word tells them apart (checked by brute force over all words).
+    alphabet = list(a.events)
+    for n in range(len(names)):
+        for shorter in itertools.product(alphabet, repeat=n):
+            assert accepts(a, shorter) == accepts(b, shorter)
+    assert not faudes.LanguageEquality(conjunction(a), conjunction(b))
+
+
+def test_different_events_or_flags_are_reported(tmp_path):
+    result = run("equiv", ENERGY_WORKER, CORPUS / "openswarm" / "uav.yaml")
+    assert result.exit_code == 1 and result.stdout.startswith("not equivalent: events in only one set: EV_")
+    flipped = tmp_path / "flipped.yaml"
+    flipped.write_text(ENERGY_WORKER.read_text().replace("ev_controllable: [ 1,1,0", "ev_controllable: [ 1,1,1", 1))
+    result = run("equiv", ENERGY_WORKER, flipped)
+    assert result.stdout == "not equivalent: EV_highEnergy is controllable in one set only\n"
+
+
+@pytest.mark.parametrize("a,b", [(a, b) for a, b in itertools.combinations(SUPERVISORS, 2)
+                                  if set(model(a).events) == set(model(b).events)] +
+                         [(p, p) for p in SUPERVISORS], ids=lambda p: p.stem)
+def test_equiv_agrees_with_libfaudes_on_the_corpus(a, b):
+    ma, mb = model(a), model(b)
+    ours = compare(ma, mb) is None
+    assert ours == faudes.LanguageEquality(conjunction(ma), conjunction(mb))

@@ -1,0 +1,191 @@
+"""The Python VM's semantics, one rule at a time, on small supervisors written for the purpose."""
+
+from pathlib import Path
+
+import pytest
+
+from swarmvm.pipeline import compile_inputs
+
+CORPUS = Path(__file__).parent.parent / "corpus"
+
+
+def image_of(tmp_path, text, name="m.yaml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return compile_inputs([str(path)]).image
+
+
+# One supervisor: controllable go (0 -> 1), uncontrollable back (1 -> 0) and tick (self-loops);
+# public uncontrollable zmsg (self-loops). Events sorted: back, go, tick, zmsg.
+LOOP = """num_events: 4
+num_supervisors: 1
+events: [ EV_go, EV_back, EV_tick, EV_zmsg ]
+ev_controllable: [ 1, 0, 0, 0 ]
+ev_public: [ 0, 0, 0, 1 ]
+sup_events: [ [ 1, 1, 1, 1 ] ]
+sup_init_state: [ 0 ]
+sup_data_pos: [ 0 ]
+sup_data: [ 3, EV_go, 0, 1, EV_tick, 0, 0, EV_zmsg, 0, 0, 3, EV_back, 0, 0, EV_tick, 0, 1, EV_zmsg, 0, 1 ]
+"""
+
+
+def test_generator_test_vectors(vm):
+    r = vm.XorShift32(1)
+    assert [r.next() for _ in range(4)] == [270369, 67634689, 2647435461, 307599695]
+    r = vm.XorShift32(0)
+    assert [r.next() for _ in range(2)] == [0x510C4619, 0xE02E553E]
+    r = vm.XorShift32(42)
+    assert [r.below(5) for _ in range(10)] == [0, 3, 0, 4, 4, 1, 4, 2, 3, 1]
+
+
+def test_level_inputs_fire_every_step_edge_inputs_once(vm, tmp_path):
+    image = image_of(tmp_path, LOOP)
+    # tick's check is always true; back's is true at step 3 only (then go is enabled again).
+    for mode, expected in (("level", [[2, 1], [2], [0, 2, 1], [2]]), ("edge", [[2, 1], [], [0, 1], []])):
+        machine = vm.VM(image, inputs=mode, control="after-inputs")
+        steps = iter([False, False, True, False])
+        machine.bind("EV_tick", check=lambda _d: True)
+        machine.bind("EV_back", check=lambda _d: next(steps))
+        assert [machine.step() for _ in range(4)] == expected, mode
+
+
+def test_if_quiet_holds_the_controllable_event_while_inputs_occur(vm, tmp_path):
+    image = image_of(tmp_path, LOOP)
+    machine = vm.VM(image, control="if-quiet")
+    ticks = iter([True, True, False])
+    machine.bind("tick", check=lambda _d: next(ticks))
+    assert [machine.step() for _ in range(3)] == [[2], [2], [1]]
+
+
+def test_public_events_are_applied_before_private_ones(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP), control="if-quiet")
+    order = []
+    for name in ("tick", "zmsg"):
+        machine.bind(name, action=lambda _d, name=name: order.append(name), check=lambda _d: True)
+    assert machine.step() == [3, 2]
+    assert order == ["zmsg", "tick"]
+
+
+def test_violations_are_counted_and_reported(vm, tmp_path):
+    seen = []
+    machine = vm.VM(image_of(tmp_path, LOOP), control="if-quiet", on_violation=lambda e, s: seen.append((e, s)))
+    machine.bind("back", check=lambda _d: True)   # back is impossible in state 0
+    assert machine.step() == [0]
+    assert machine.states == [0] and machine.violations == 1 and seen == [(0, 0)]
+
+
+TWO = """num_events: 2
+num_supervisors: 1
+events: [ EV_a, EV_b ]
+ev_controllable: [ 1, 1 ]
+sup_events: [ [ 1, 1 ] ]
+sup_init_state: [ 0 ]
+sup_data_pos: [ 0 ]
+sup_data: [ 2, EV_a, 0, 0, EV_b, 0, 0 ]
+sup_data_prob_pos: [ 0 ]
+sup_data_prob: [ 2, 0.0, 1.0 ]
+"""
+
+
+def test_policy_first_follows_the_priority_list(vm, tmp_path):
+    image = image_of(tmp_path, TWO.replace("sup_data_prob_pos: [ 0 ]\nsup_data_prob: [ 2, 0.0, 1.0 ]\n", ""))
+    machine = vm.VM(image, policy="first")
+    assert [machine.step() for _ in range(3)] == [[0], [0], [0]]
+    machine = vm.VM(image, policy="first", priority=["EV_b"])
+    assert [machine.step() for _ in range(3)] == [[1], [1], [1]]
+
+
+def test_weighted_policy_never_picks_a_zero_weight_event(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, TWO), policy="weighted", seed=5)
+    assert {machine.step()[0] for _ in range(200)} == {1}
+
+
+def test_binding_an_unknown_name_is_an_error_not_event_0(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    with pytest.raises(KeyError, match="EV_nope"):
+        machine.bind("EV_nope", action=print)
+    with pytest.raises(ValueError, match="controllable"):
+        machine.bind("go", check=lambda _d: True)
+
+
+def test_controller_methods_bind_by_name_and_unbound_checks_are_listed(vm, tmp_path):
+    calls = []
+
+    class Controller:
+        def check_tick(self, data):
+            return True
+
+        def on_go(self, data):
+            calls.append("go")
+
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    assert machine.unbound_checks() == ["EV_zmsg", "EV_back", "EV_tick"]
+    machine.bind_controller(Controller())
+    assert machine.unbound_checks() == ["EV_zmsg", "EV_back"]
+    assert machine.step() == [2, 1] and calls == ["go"]
+
+
+def test_swap_rebinds_by_name_and_a_missing_name_keeps_the_old_logic(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    machine.bind("tick", check=lambda _d: True)
+    machine.step()
+    assert machine.states == [1]
+    renamed = image_of(tmp_path, LOOP.replace("EV_go", "EV_aa_go"), "n.yaml")   # go is now event 0
+    machine.load(renamed)
+    assert machine.states == [0] and machine.step() == [2, 0]
+    with pytest.raises(KeyError):
+        machine.load(image_of(tmp_path, LOOP.replace("EV_tick", "EV_tock"), "o.yaml"))
+    assert machine.image.names[0] == "aa_go"
+
+
+def test_reset_restores_states_counters_and_generator(vm):
+    image = compile_inputs([str(CORPUS / "openswarm" / "network_leader.yaml")]).image
+    machine = vm.VM(image, seed=9)
+    first = [machine.step() for _ in range(20)]
+    machine.reset()
+    assert [machine.step() for _ in range(20)] == first
+
+
+def test_nadzoru_compatible_api_runs_a_published_style_controller(vm, tmp_path):
+    from click.testing import CliRunner
+    from swarmvm.cli import main
+    yaml_path = tmp_path / "supervisor.yaml"
+    yaml_path.write_text((CORPUS / "openswarm" / "capbot_demo.yaml").read_text())
+    assert CliRunner().invoke(main, ["pack", str(yaml_path), "-o", str(tmp_path / "supervisor.svm")]).exit_code == 0
+    log = []
+    sct = vm.SCT(str(yaml_path))
+    button = {"pressed": True}
+    sct.add_callback(sct.EV["EV_btnMove"], lambda d: log.append("btnMove"), lambda d: d["pressed"], button)
+    sct.add_callback(sct.EV["EV_move"], lambda d: log.append("move"), None, None)
+    ev, controllable = sct.get_events()
+    assert set(ev) == {"EV_move", "EV_btnStop", "EV_stop", "EV_btnMove"} and sum(controllable) == 2
+    sct.run_step()
+    assert log[0] == "btnMove" and sct.sup_current_state != [0]
+
+
+def test_strict_mode_refuses_to_step_and_lists_every_unbound_check(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP), strict=True)
+    machine.bind("tick", check=lambda _d: False)
+    with pytest.raises(vm.UnboundEvents) as refused:
+        machine.step()
+    assert refused.value.names == ["EV_zmsg", "EV_back"]
+    machine.bind("zmsg", check=lambda _d: False)
+    machine.bind("back", check=lambda _d: False)
+    assert machine.step() == [1]
+
+
+def test_a_new_image_needing_an_event_the_application_lacks_is_reported_before_activation(vm, tmp_path):
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    for name in ("tick", "zmsg", "back"):
+        machine.bind(name, check=lambda _d: False)
+    extra = LOOP.replace("num_events: 4", "num_events: 5").replace("EV_zmsg ]", "EV_zmsg, EV_alarm ]").replace(
+        "[ 1, 0, 0, 0 ]", "[ 1, 0, 0, 0, 0 ]").replace("[ 0, 0, 0, 1 ]", "[ 0, 0, 0, 1, 0 ]").replace(
+        "[ [ 1, 1, 1, 1 ] ]", "[ [ 1, 1, 1, 1, 0 ] ]")
+    assert machine.load(image_of(tmp_path, extra, "x.yaml")) == ["EV_alarm"]
+    strict = vm.VM(image_of(tmp_path, LOOP), strict=True)
+    for name in ("tick", "zmsg", "back"):
+        strict.bind(name, check=lambda _d: False)
+    before = strict.image
+    with pytest.raises(vm.UnboundEvents):
+        strict.load(image_of(tmp_path, extra, "y.yaml"))
+    assert strict.image is before and strict.step() == [1]
