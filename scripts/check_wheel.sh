@@ -2,7 +2,8 @@
 # The installed product, as a new user gets it: build the wheel from this checkout, install it
 # into a fresh venv outside the checkout, run every verb from an unrelated directory with the
 # wheel's CLI and with the editable install's, and require identical output; then run the CLI
-# tests against the wheel's install. Usage: scripts/check_wheel.sh [EDITABLE_VENV]
+# tests that need only the package (CLI, inputs, golden files, Python targets) against the
+# wheel's install. Usage: scripts/check_wheel.sh [EDITABLE_VENV]
 # (`make wheel-check`; footprint needs build/*/energy_worker.elf: `make firmware` first).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -42,4 +43,5 @@ diff -r "$work/run-editable" "$work/run-wheel" \
   || { echo "wheel-check: the wheel's output differs from the editable install's"; exit 1; }
 echo "wheel-check: every verb gives identical output from the wheel and the editable install" \
   "($(ls "$work/run-wheel/gen" | wc -l) targets generated)"
-(cd "$work" && "$work/venv/bin/python" -m pytest -q -p no:cacheprovider --rootdir "$root" "$root/tests/cli")
+(cd "$work" && "$work/venv/bin/python" -m pytest -p no:cacheprovider --rootdir "$root" \
+  "$root/tests/cli" "$root/tests/inputs" "$root/tests/golden" "$root/tests/pipuck" "$root/tests/python")
