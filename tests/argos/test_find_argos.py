@@ -1,7 +1,7 @@
 """Finding ARGoS: scripts/argos.sh (the prefix it prints, a second call a no-op, exit status 3
 when there is neither an ARGoS nor a source archive, a bad ARGOS_PREFIX refused) and the
-generated CMakeLists.txt (ARGoS found from the argos3 program on PATH or from
-CMAKE_PREFIX_PATH, a clear error without any ARGoS)."""
+generated CMakeLists.txt (ARGoS found from the argos3 program on PATH, from CMAKE_PREFIX_PATH,
+or by pkg-config where no ARGoSConfig.cmake is found; a clear error without any ARGoS)."""
 
 import os
 import shutil
@@ -68,3 +68,21 @@ def test_cmake_without_argos_says_how_to_give_it(tmp_path):
     result = configure(project, os.environ["PATH"], tmp_path)
     assert result.returncode != 0
     assert "ARGoS 3 not found" in result.stderr and "-DARGOS_PREFIX=<prefix>" in result.stderr
+
+
+@pytest.mark.slow
+def test_cmake_falls_back_on_pkg_config(argos_prefix, tmp_path):
+    """An ARGoS without ARGoSConfig.cmake but with argos3_simulator.pc (what older releases
+    install; written here for the real ARGoS) is found by pkg-config, Lua's headers added."""
+    (tmp_path / "argos3_simulator.pc").write_text(
+        "prefix=%s\nName: argos3_simulator\nDescription: ARGoS\nVersion: 3\n"
+        "Cflags: -I${prefix}/include\nLibs: -L${prefix}/lib/argos3\n" % argos_prefix)
+    project = generate(CORPUS / "energy_worker.yaml", tmp_path / "project")
+    result = configure(project, os.environ["PATH"], tmp_path, "-DCMAKE_CXX_FLAGS=-Werror")
+    assert result.returncode == 0, result.stderr
+    assert "ARGOS_CMAKE_DIR:PATH=ARGOS_CMAKE_DIR-NOTFOUND" in (project.folder / "build" / "CMakeCache.txt").read_text()
+    build = subprocess.run(["cmake", "--build", str(project.folder / "build"), "--", "VERBOSE=1"],
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stdout + build.stderr
+    assert "warning" not in (build.stdout + build.stderr).lower()
+    assert "-isystem %s/include" % argos_prefix in build.stdout
