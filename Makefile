@@ -40,7 +40,7 @@ gen:
 	  echo "generated $(BUILD)/gen/$$t"; done
 
 demo: setup
-	$(MAKE) -s --no-print-directory gen firmware emulate footprint
+	$(MAKE) -s --no-print-directory gen firmware emulate argos-demo footprint
 
 bench: setup
 	$(PYTHON) benchmarks/python_vm.py

@@ -59,12 +59,19 @@ def message_name(name: str, controllable: bool) -> str:
     return name[1:] if not controllable and name.startswith("_") else name
 
 
+def fnv1a(text: str) -> int:
+    """FNV-1a (32 bits) of a text: message codes here, and the ARGoS controller's per-robot VM
+    seed (random seed XOR FNV-1a of the robot id, swarmvm::robot_seed in swarmvm_argos.hpp)."""
+    value = 2166136261
+    for byte in text.encode("utf-8"):
+        value = ((value ^ byte) * 16777619) & 0xFFFFFFFF
+    return value
+
+
 def message_code(message: str) -> int:
     """16-bit code of a message on ARGoS's range-and-bearing: FNV-1a of the name folded to 16
     bits; 0 means "no message" on the wire, so it becomes 1."""
-    value = 2166136261
-    for byte in message.encode("ascii"):
-        value = ((value ^ byte) * 16777619) & 0xFFFFFFFF
+    value = fnv1a(message)
     return ((value >> 16) ^ (value & 0xFFFF)) or 1
 
 

@@ -44,7 +44,7 @@ TARGETS = {
                    ("argos/controller.cpp.j2", "{name}_controller.cpp", True),
                    ("argos/CMakeLists.txt.j2", "CMakeLists.txt", True),
                    ("argos/experiment.argos.j2", "{name}.argos", True)),
-        copies=((RUNTIME_CPP / "swarmvm.hpp", "swarmvm.hpp"), (RUNTIME_CPP / "swarmvm_argos.hpp", "swarmvm_argos.hpp"))),
+        copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_report.hpp"))),
     "pipuck": Target(
         "Pi-puck controller (Python): tables, the Python VM, robot adapters (real and --sim), fixed-rate app, controller skeleton",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),

@@ -15,7 +15,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <istream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -763,16 +765,56 @@ inline std::string format_trace_line(unsigned step, const std::vector<std::strin
     return line + " " + std::to_string(violations);
 }
 
+// Binds the check of every uncontrollable event to the script row `row` points at (no event
+// occurs while it is null): how the conformance harnesses drive a VM from an event script.
+// `row` must outlive the bindings.
+template <class Rng>
+void bind_script_checks(BasicVM<Rng>& vm, const Mask* const& row) {
+    for (unsigned e = 0; e < vm.image().num_events; ++e) {
+        if (!vm.image().controllable.test(e)) {
+            vm.set_check(e, [&row, e](void*) { return row != nullptr && row->test(e); });
+        }
+    }
+}
+
+// Reads an event script in its text form (docs/conformance.md: per step the EV_ names that
+// occur, or "-"; blank and '#' lines skipped) as one mask per step. An unknown or
+// controllable event throws std::invalid_argument naming the line.
+inline std::vector<Mask> read_event_script(const Image& image, std::istream& in) {
+    std::vector<Mask> rows;
+    std::string line;
+    for (unsigned number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        const std::vector<std::string> tokens((std::istream_iterator<std::string>(words)),
+                                              std::istream_iterator<std::string>());
+        if (tokens.empty() || tokens[0][0] == '#') continue;
+        Mask row;
+        for (const std::string& token : tokens) {
+            if (tokens.size() == 1 && token == "-") break;
+            const std::string where = "event script line " + std::to_string(number) + ": ";
+            if (token.compare(0, 3, "EV_") != 0) throw std::invalid_argument(where + "unknown event " + token);
+            unsigned e = 0;
+            try {
+                e = image.event_index(token);
+            } catch (const UnknownEvent&) {
+                throw std::invalid_argument(where + "unknown event " + token);
+            }
+            if (image.controllable.test(e)) {
+                throw std::invalid_argument(where + token + " is controllable: the VM chooses it, a script cannot");
+            }
+            row.set(e);
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
 // Runs `vm` from reset on an event script (one mask of occurring events per step) and
 // returns the canonical trace lines: the conformance harness, as the Python replay().
 template <class Rng>
 std::vector<std::string> replay(BasicVM<Rng>& vm, const std::vector<Mask>& rows) {
     const Mask* row = nullptr;
-    for (unsigned e = 0; e < vm.image().num_events; ++e) {
-        if (!vm.image().controllable.test(e)) {
-            vm.set_check(e, [&row, e](void*) { return row->test(e); });
-        }
-    }
+    bind_script_checks(vm, row);
     vm.reset();
     std::vector<std::string> lines;
     for (std::size_t i = 0; i < rows.size(); ++i) {

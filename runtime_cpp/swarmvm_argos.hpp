@@ -1,4 +1,5 @@
-// ARGoS glue for the swarmvm C++ VM: a generator that draws from ARGoS's CRNG on request.
+// ARGoS glue for the swarmvm C++ VM: a generator that draws from ARGoS's CRNG on request, and the
+// per-robot VM seed.
 //
 // The default VM generator is the specified xorshift32 (docs/semantics.md), identical on every
 // target. An ARGoS experiment may prefer the simulator's own random stream, seeded by the
@@ -8,6 +9,7 @@
 #define SWARMVM_ARGOS_HPP
 
 #include <cstdint>
+#include <string_view>
 
 #include <argos3/core/utility/math/rng.h>
 
@@ -36,6 +38,15 @@ private:
 };
 
 using ArgosVM = BasicVM<ArgosRng>;
+
+// The VM seed of the robot `id` in an experiment seeded `seed`: the seed XOR FNV-1a (32 bits)
+// of the id, so that robots sharing a configuration do not all make the same choices, and a
+// robot's choices are reproducible from the seed and its id alone (docs/targets-cpp-python.md).
+inline std::uint32_t robot_seed(std::uint32_t seed, std::string_view id) {
+    std::uint32_t hash = 2166136261u;
+    for (char c : id) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+    return seed ^ hash;
+}
 
 }  // namespace swarmvm
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install what swarmvm needs on a fresh Debian machine (idempotent): the cross toolchains,
-# emulators and build tools from Debian's packages, then a virtual environment of the
+# emulators and build tools from Debian's packages (with what building ARGoS from source needs:
+# xz-utils, Lua 5.3, FreeImage; scripts/argos.sh builds it), then a virtual environment of the
 # project's own (.venv/, or $VENV) holding swarmvm (editable) and its test dependencies.
 # Debian's system Python refuses `pip install` (PEP 668), hence the venv; every make target
 # uses it, and `.venv/bin/swarmvm` (or `source .venv/bin/activate`) is the installed CLI.
@@ -10,7 +11,8 @@ venv="${VENV:-.venv}"
 python="${SETUP_PYTHON:-python3}"
 
 packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
-  g++ clang cmake pkg-config cppcheck python3-venv graphviz"
+  g++ clang cmake pkg-config cppcheck python3-venv graphviz
+  xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
