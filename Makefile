@@ -6,6 +6,8 @@ PYTHON ?= python3
 SWARMVM ?= swarmvm
 BUILD ?= build
 EXAMPLE ?= examples/energy_worker/supervisor.yaml
+# Kilobot images (mk/kilobot.mk): STREAM=1 builds the streaming variant, apart.
+KILOBOT_OUT := $(BUILD)/kilobot$(if $(filter 1,$(STREAM)),-stream)
 
 .PHONY: setup test demo bench gen firmware footprint clean
 

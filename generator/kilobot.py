@@ -17,8 +17,7 @@ def message_name(name, controllable):
 
 def prepare(compiled):
     """Template values of the Kilobot target: ``messages`` (event index -> the name its message
-    carries, for public events) and ``wires`` (the distinct message names, in event order).
-    Raises InputError naming the first two public events whose messages collide."""
+    carries, for public events). Raises InputError naming the first two public events whose messages collide."""
     model = compiled.model
     messages, seen = {}, {}
     for i, name in enumerate(model.events):
@@ -31,4 +30,4 @@ def prepare(compiled):
                              "(a message carries the first %d characters of the name): rename one"
                              % (first[1], name, wire[:MESSAGE_BYTES], MESSAGE_BYTES))
         messages[i] = wire
-    return dict(messages=messages, wires=list(dict.fromkeys(messages.values())))
+    return dict(messages=messages)
