@@ -19,17 +19,18 @@
 KILOBOT_WARNINGS := -Wextra -Werror -pedantic
 KILOBOT_GEN_DEPS := $(wildcard templates/kilobot/*.j2 templates/c/*.j2 runtime_c/swarmvm*.[ch] generator/*.py)
 KILOBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
-KILOLIB_FOLDER = $$($(PYTHON) firmware/kilobot/kilolib_build.py)
 
 firmware: kilobot-firmware
 bench: bench-avr
 test: kilolib kilobot-board
 
+# Missing tools stop `make test` only in CI (CI=true); elsewhere the reason is printed and the
+# Kilobot tests skip, saying how to get them.
 kilolib:
-	@echo "kilolib: $$($(PYTHON) firmware/kilobot/kilolib_build.py)"
+	@printf 'kilolib: '; $(PYTHON) firmware/kilobot/kilolib_build.py || [ "$$CI" != true ]
 
 kilobot-board:
-	@echo "kilobot board: $$($(PYTHON) firmware/kilobot/board.py)"
+	@printf 'kilobot board: '; $(PYTHON) firmware/kilobot/board.py || [ "$$CI" != true ]
 
 kilobot-firmware: $(addprefix $(KILOBOT_OUT)/,$(KILOBOT_CORPUS:=.elf) energy_worker.hex)
 
@@ -45,7 +46,7 @@ $(KILOBOT_OUT)/gen/$1/Makefile: $2 $(KILOBOT_GEN_DEPS)
 	$(SWARMVM) gen $2 --target kilobot -o $(KILOBOT_OUT)/gen/$1 --name $1 >/dev/null
 
 $(KILOBOT_OUT)/$1.elf: $(KILOBOT_OUT)/gen/$1/Makefile
-	kilolib=$(KILOLIB_FOLDER) && $(MAKE) -s --no-print-directory -C $(KILOBOT_OUT)/gen/$1 $1.elf \
+	kilolib=$$$$($(PYTHON) firmware/kilobot/kilolib_build.py) && $(MAKE) -s --no-print-directory -C $(KILOBOT_OUT)/gen/$1 $1.elf \
 	  KILOLIB="$$$$kilolib" STREAM=$(STREAM) CPPFLAGS="$(KILOBOT_WARNINGS)"
 	cp $(KILOBOT_OUT)/gen/$1/$1.elf $$@
 endef

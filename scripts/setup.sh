@@ -3,7 +3,7 @@
 # emulators from Debian's packages, then swarmvm itself with its test dependencies from PyPI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang"
+packages="gcc-avr avr-libc binutils-avr simavr libsimavr-dev make gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm g++ clang"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -188,7 +188,7 @@ class Program:
     """Supervisor A's Kilobot application with the test controller, built once in ``workdir``
     against the real kilolib; ``run`` runs it on the simavr Kilobot board."""
 
-    def __init__(self, workdir, supervisor=SUPERVISOR_A):
+    def __init__(self, workdir, supervisor=SUPERVISOR_A, defines=()):
         self.workdir = Path(workdir)
         self.compiled = compile_inputs([str(supervisor)], name=NAME)
         self.workdir.mkdir(parents=True, exist_ok=True)
@@ -202,7 +202,7 @@ class Program:
         limits = re.findall(r"-DSVM_MAX_[A-Z_]+=[0-9]+", (self.workdir / "Makefile").read_text())
         sources = ["%s_%s.c" % (NAME, part) for part in ("app", "controller", "tables")]
         self.elf = self.workdir / ("%s.elf" % NAME)
-        subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *STRICT, *limits, "-DSVM_STREAM", "-I%s" % kilolib,
+        subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *STRICT, *limits, "-DSVM_STREAM", *defines, "-I%s" % kilolib,
                         *sources, "swarmvm.c", "swarmvm_stream.c", "swarmvm_kilobot.c",
                         str(kilolib / "build" / "kilolib.a"), "-o", self.elf.name],
                        cwd=self.workdir, check=True, capture_output=True, text=True)

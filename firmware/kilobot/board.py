@@ -21,7 +21,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from kilolib_build import KilolibMissing, cache_root  # noqa: E402
+from kilolib_build import KilolibMissing, cache_root, print_path  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent / "board" / "kilobot_board.c"
 SIMAVR_INCLUDE = Path("/usr/include/simavr")
@@ -78,7 +78,9 @@ class Run:
     rx: list = field(default_factory=list)
     tx: list = field(default_factory=list)
     collisions: int = 0
+    leds: list = field(default_factory=list)        # (tick, set_color value) on each change
     end: tuple = ()
+    ram: int | None = None                          # the ``read`` variable at the end
     eeprom: bytes = b""
 
 
@@ -95,8 +97,12 @@ def parse(output: str) -> Run:
             run.rx.append(_message(fields))
         elif tag == "#tx":
             run.tx.append(_message(fields))
+        elif tag == "#led":
+            run.leds.append((int(fields[1]), int(fields[2])))
         elif tag == "#collision":
             run.collisions += 1
+        elif tag == "#ram":
+            run.ram = int(fields[2])
         elif tag == "#end":
             run.end = (int(fields[1]), int(fields[2]), fields[3])
         else:
@@ -105,11 +111,12 @@ def parse(output: str) -> Run:
 
 
 def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: bytes | None = None,
-        timeout: int = 600) -> Run:
+        read: str | None = None, timeout: int = 600) -> Run:
     """Run ``elf`` until kilo_ticks reaches ``ticks`` (None: until the image stops the CPU, for
-    programs without kilolib, whose schedule times are then cycles/512). ``messages``: (tick, type, 9 data bytes),
+    programs without kilolib, which get no messages). ``messages``: (tick, type, 9 data bytes),
     sent in order once kilo_ticks reaches their tick, after the RUN message at ``start_tick``;
-    ``eeprom``: the EEPROM's contents from address 0 (default: erased, 0xFF)."""
+    ``eeprom``: the EEPROM's contents from address 0 (default: erased, 0xFF); ``read``: a 4-byte
+    variable whose value at the end is ``Run.ram``."""
     elf = Path(elf)
     with tempfile.TemporaryDirectory() as work:
         schedule = Path(work) / "schedule"
@@ -118,6 +125,8 @@ def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: 
         command = [str(board_path()), "-m", str(schedule), "-E", str(Path(work) / "eeprom.out")]
         if ticks is not None:
             command += ["-t", str(sram_symbol(elf, "kilo_ticks")), "-n", str(ticks)]
+        if read is not None:
+            command += ["-r", str(sram_symbol(elf, read))]
         if eeprom is not None:
             (Path(work) / "eeprom.in").write_bytes(eeprom)
             command += ["-e", str(Path(work) / "eeprom.in")]
@@ -129,14 +138,5 @@ def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: 
     return result
 
 
-def main() -> int:
-    try:
-        print(board_path())
-    except KilolibMissing as missing:
-        print(missing, file=sys.stderr)
-        return 1
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(print_path(board_path))

@@ -23,6 +23,7 @@ import sys
 import tarfile
 import tempfile
 from pathlib import Path
+from typing import Callable
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 DEFAULT_SOURCE = ROOT.parent / "shared" / "vendor" / "kilolib-b95fdaf.tar.gz"
@@ -95,9 +96,10 @@ def kilolib_dir() -> Path:
     return build(Path(os.environ.get("KILOLIB_SRC") or DEFAULT_SOURCE).resolve(), cache_root())
 
 
-def main() -> int:
+def print_path(find: Callable[[], Path]) -> int:
+    """A script's main: print what ``find`` finds or builds, or why it cannot (status 1)."""
     try:
-        print(kilolib_dir())
+        print(find())
     except KilolibMissing as missing:
         print(missing, file=sys.stderr)
         return 1
@@ -105,4 +107,4 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(print_path(kilolib_dir))

@@ -15,19 +15,21 @@
  *     the board decodes those pulses with the same timing and prints each message it sees.
  *   - one medium: a scheduled message waits while the robot transmits, and one cut short by the
  *     robot's own transmission (a collision) is sent again, whole, once the channel is free.
- *   - USART0 output (kilolib's debug.h) printed line by line; EEPROM contents given and dumped.
+ *   - USART0 output (kilolib's debug.h) printed line by line; EEPROM contents given and dumped;
+ *     the RGB LED's colour (kilolib's set_color drives it through DDRC/DDRD) reported on change.
  * The distance (ADC) of a received message is whatever simavr's ADC reads: not modelled.
  *
  * usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] [-e EEPROM_IN]
- *                      [-E EEPROM_OUT] IMAGE.elf
+ *                      [-E EEPROM_OUT] [-r ADDR] IMAGE.elf
  *   -t  SRAM address of kilo_ticks (avr-nm): schedule times and -n are in kilolib ticks
  *   -n  stop once kilo_ticks reaches this;  -c  stop after this many cycles (default 4e9)
  *   -m  schedule file, one message a line: "TICK TYPE DATA" (TYPE hex, DATA 18 hex digits),
  *       sent once kilo_ticks >= TICK and the channel is free, in file order
  *   -e  raw EEPROM contents from address 0;  -E  the EEPROM (1,024 bytes) written there at the end
+ *   -r  SRAM address of a 4-byte variable printed at the end ("#ram ADDR VALUE", little-endian)
  * Output (stdout), in order of time: the image's USART0 lines as they are; "#rx TICK TYPE DATA"
  * once a scheduled message was sent; "#tx TICK TYPE DATA ok|badcrc" for each message the robot
- * sent; "#collision TICK"; last "#end TICK CYCLES done|crashed|ticks|cycles".
+ * sent; "#collision TICK"; "#led TICK RGB" (set_color's value) on each change; last "#end TICK CYCLES done|crashed|ticks|cycles".
  */
 #include <stdarg.h>
 #include <stdint.h>
@@ -52,6 +54,9 @@
 #define PULSE_CYCLES 8u                 /* how long the light stays on */
 #define LIGHT_MV 2000u                  /* AIN0 while lit (AIN1 stays at 0 V) */
 #define POLL_CYCLES 512u
+/* Quiet time between two messages sent to the robot: kilolib handles a whole message (CRC,
+ * the program's callback) in its receive interrupt, after the last stop bit. */
+#define GAP_CYCLES (11u * BIT_CYCLES)
 #define TX_LED_BITS 0xC7u               /* PORTB bits kilolib's tx_mask may use */
 #define EEPROM_BYTES 1024u
 #define MAX_SCHEDULE 4096u
@@ -63,7 +68,7 @@ typedef struct {
 
 static avr_t *avr;
 static avr_irq_t *ain0;
-static long ticks_at = -1;
+static long ticks_at = -1, read_at = -1;
 static uint32_t stop_tick;
 static int has_stop_tick;
 static avr_cycle_count_t stop_cycle = 4000000000ull;
@@ -75,7 +80,7 @@ static unsigned num_scheduled, next_scheduled;
 /* The message being sent to the robot: pulse times relative to its first pulse. */
 static uint32_t pulses[MAX_PULSES];
 static unsigned num_pulses, next_pulse, sending;
-static avr_cycle_count_t train_start;
+static avr_cycle_count_t train_start, train_end;
 
 /* Decoder of the robot's IR pulses (kilolib's receiver, same arithmetic). */
 static struct {
@@ -171,6 +176,7 @@ static avr_cycle_count_t light_off(avr_t *a, avr_cycle_count_t when, void *param
         avr_cycle_timer_register(a, train_start + pulses[next_pulse] - a->cycle, light_on, NULL);
     } else {
         sending = 0;
+        train_end = a->cycle;
         print_message("rx", schedule[next_scheduled].raw, "");
         next_scheduled++;
     }
@@ -256,6 +262,25 @@ static void on_port_b(avr_irq_t *irq, uint32_t value, void *param)
     led = lit;
 }
 
+/* ---- the LED: set_color's bits 0-5 are DDRD5, DDRD4, DDRC3, DDRC2, DDRC5, DDRC4, read at
+ * each poll (a 1 ms blink lasts 8,000 cycles) ---- */
+
+#define DDRC_AT 0x27u
+#define DDRD_AT 0x2Au
+
+static uint8_t colour;
+
+static void watch_led(void)
+{
+    uint8_t c = avr->data[DDRC_AT], d = avr->data[DDRD_AT];
+    uint8_t now = (uint8_t)(((d >> 5) & 1u) | (((d >> 4) & 1u) << 1) | (((c >> 3) & 1u) << 2) |
+                            (((c >> 2) & 1u) << 3) | (((c >> 5) & 1u) << 4) | (((c >> 4) & 1u) << 5));
+    if (now != colour) {
+        colour = now;
+        printf("#led %u %u\n", (unsigned)ticks(), (unsigned)colour);
+    }
+}
+
 /* ---- USART0 ---- */
 
 static void on_uart(avr_irq_t *irq, uint32_t value, void *param)
@@ -278,13 +303,14 @@ static avr_cycle_count_t poll(avr_t *a, avr_cycle_count_t when, void *param)
 {
     uint32_t now = ticks();
     (void)param;
+    watch_led();
     if (has_stop_tick && now >= stop_tick) {
         stop_reason = "ticks";
     } else if (a->cycle >= stop_cycle) {
         stop_reason = "cycles";
     }
     if (!sending && next_scheduled < num_scheduled && now >= schedule[next_scheduled].tick &&
-        !robot_transmitting()) {
+        !robot_transmitting() && (train_end == 0 || a->cycle - train_end >= GAP_CYCLES)) {
         encode(schedule[next_scheduled].raw);
         sending = 1;
         next_pulse = 0;
@@ -376,7 +402,7 @@ int main(int argc, char **argv)
     const char *schedule_path = NULL, *eeprom_in = NULL, *eeprom_out = NULL;
     uint32_t flags = 0;
     int option, state = cpu_Running;
-    while ((option = getopt(argc, argv, "t:n:c:m:e:E:")) != -1) {
+    while ((option = getopt(argc, argv, "t:n:c:m:e:E:r:")) != -1) {
         switch (option) {
         case 't': ticks_at = strtol(optarg, NULL, 0); break;
         case 'n': stop_tick = (uint32_t)strtoul(optarg, NULL, 0); has_stop_tick = 1; break;
@@ -384,12 +410,13 @@ int main(int argc, char **argv)
         case 'm': schedule_path = optarg; break;
         case 'e': eeprom_in = optarg; break;
         case 'E': eeprom_out = optarg; break;
+        case 'r': read_at = strtol(optarg, NULL, 0); break;
         default: return 2;
         }
     }
     if (optind != argc - 1 || (has_stop_tick && ticks_at < 0)) {
         fprintf(stderr, "usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] "
-                        "[-e EEPROM_IN] [-E EEPROM_OUT] IMAGE.elf\n");
+                        "[-e EEPROM_IN] [-E EEPROM_OUT] [-r ADDR] IMAGE.elf\n");
         return 2;
     }
     avr_global_logger_set(log_errors);
@@ -434,6 +461,10 @@ int main(int argc, char **argv)
     }
     if (eeprom_out != NULL) {
         eeprom_io(eeprom_out, 1);
+    }
+    if (read_at >= 0) {
+        printf("#ram %ld %lu\n", read_at, (unsigned long)avr->data[read_at] | (unsigned long)avr->data[read_at + 1] << 8 |
+               (unsigned long)avr->data[read_at + 2] << 16 | (unsigned long)avr->data[read_at + 3] << 24);
     }
     printf("#end %u %llu %s\n", (unsigned)ticks(), (unsigned long long)avr->cycle,
            stop_reason != NULL ? stop_reason : state == cpu_Done ? "done" : "crashed");
