@@ -127,20 +127,18 @@ static void on_message(message_t *message, distance_measurement_t *distance)
 /* The wire of the next pending event after the last one sent (events take turns), or 0. */
 static const svm_kilobot_wire_t *next_pending(void)
 {
-    const svm_kilobot_wire_t *wire, *first = 0;
-    uint8_t event;
+    const svm_kilobot_wire_t *wire, *chosen = 0;
+    uint8_t event, later = 0;
     for (wire = svm_kilobot_wires; (event = wire_event(wire)) != SVM_KILOBOT_END; wire++) {
         if (SVM_FLASH_BYTE(&wire->received) || !(pending[event >> 3] & bit_of(event))) {
             continue;
         }
-        if (outgoing_event == SVM_KILOBOT_END || event > outgoing_event) {
-            return wire;
-        }
-        if (first == 0) {
-            first = wire;
+        if (chosen == 0 || (!later && event > outgoing_event)) {
+            chosen = wire;
+            later = (uint8_t)(event > outgoing_event);
         }
     }
-    return first;
+    return chosen;
 }
 
 /* kilo_message_tx, in the Timer0 interrupt: the message kilolib sends now, built here. */
