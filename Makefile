@@ -8,6 +8,8 @@ PYTHON ?= $(VENV)/bin/python
 SWARMVM ?= $(VENV)/bin/swarmvm
 BUILD ?= build
 EXAMPLE ?= examples/energy_worker/supervisor.yaml
+# Kilobot images (mk/kilobot.mk): STREAM=1 builds the streaming variant, apart.
+KILOBOT_OUT := $(BUILD)/kilobot$(if $(filter 1,$(STREAM)),-stream)
 
 .PHONY: setup test typecheck test-quick demo bench gen firmware footprint golden wheel-check clean
 

@@ -9,7 +9,8 @@ Only linked ELF files are read (pyelftools), so the figures are what the device 
   copied to RAM at reset). AVR's ``.eeprom``, fuse, lock and signature sections are neither.
 - the **tables** are the table image: the object whose bytes start with the image magic and
   whose size is the image's own length field, wherever the build put it.
-- the **VM core** is what ``runtime_c/*.c`` defines: a global symbol whose name one of those
+- the **VM core** is what ``runtime_c/*.c`` defines (but for the robot runtime
+  ``swarmvm_kilobot.c``, which is application): a global symbol whose name one of those
   files defines at file scope, a local symbol listed after the ``STT_FILE`` entry of one of
   those files, and the VM instance (an object named ``vm`` or ``..._vm``) wherever it lives.
 - the **application** is the rest of each total: start-up code, C library, generated glue,
@@ -75,10 +76,17 @@ class FootprintError(Exception):
     """An ELF that cannot be measured (no table image in it, unknown machine)."""
 
 
+# Robot runtimes in runtime_c/ that run the VM as a program (kilolib's setup/loop, messages):
+# what a robot application needs around the VM, so they count as application, not VM core.
+PLATFORM_RUNTIMES = frozenset({"swarmvm_kilobot.c"})
+
+
 def runtime_names(runtime=RUNTIME_C):
-    """(global names the runtime's C sources define, their file names)."""
+    """(global names the runtime's C sources define, their file names), platform runtimes aside."""
     names, files = set(), set()
     for source in sorted(Path(runtime).glob("*.c")):
+        if source.name in PLATFORM_RUNTIMES:
+            continue
         files.add(source.name)
         names.update(DEFINITION.findall(source.read_text()))
     return names, files

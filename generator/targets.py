@@ -67,7 +67,9 @@ TARGETS = {
                    ("kilobot/app.c.j2", "{name}_app.c", False),
                    ("kilobot/Makefile.j2", "Makefile", False),
                    ("kilobot/controller.c.j2", "{name}_controller.c", True)),
-        copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_stream.h", "swarmvm_stream.c")),
+        copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in (
+            "swarmvm_stream.h", "swarmvm_stream.c", "swarmvm_kilobot.h", "swarmvm_kilobot.c",
+            "swarmvm_kilobot_eeprom.h")),
         prepare=kilobot.prepare),
     "capbot": Target(
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",

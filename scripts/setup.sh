@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 venv="${VENV:-.venv}"
 python="${SETUP_PYTHON:-python3}"
 
-packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm libsimavr-dev make
   g++ clang cmake pkg-config cppcheck python3-venv graphviz
   xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
 missing=""

@@ -1,12 +1,15 @@
 """Stream a new supervisor into a running Kilobot program, in simavr (docs/image-format.md,
 "Streaming an image"). Shared by tests/kilobot/test_kilobot_swap.py and `make kilobot-swap-demo`.
 
-The program is the generated Kilobot application of supervisor A built with SVM_STREAM, with a
-test controller: each check follows a fixed pattern of kilo_ticks (``pattern``) and every step
-prints one canonical trace line (docs/conformance.md), numbered from the last (re)start. The
-emulator-only kilolib (firmware/kilobot/kilolib_emu.c) delivers a scripted list of messages,
-compiled in from a generated ``kilo_emu_script.h``: the chunks of other images. ``reference``
-gives what the Python reference VM prints for an image run from reset on the same pattern.
+The program is the generated Kilobot application of supervisor A built with SVM_STREAM and
+linked with the real kilolib, with a test controller: each check follows a fixed pattern of the
+step count (``pattern``) and every step prints, over kilolib's debug output (USART0), one
+canonical trace line (docs/conformance.md), numbered from the last (re)start; the first step
+also prints "first <kilo_ticks>". It runs on the simavr Kilobot board (firmware/kilobot/board.py),
+which starts it with the overhead controller's RUN message and sends it, over IR, the chunks of
+other images at given kilolib ticks. The VM steps once per tick, so a message that arrived in
+tick T counts at the step of tick T + 1 (``Program.step_of``). ``reference`` gives what the
+Python reference VM prints for an image run from reset on the same pattern.
 
     python3 tests/kilobot_stream_demo.py OUTDIR      runs the demo and prints the trace change
 """
@@ -19,7 +22,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
+sys.path.insert(0, str(ROOT / "firmware" / "kilobot"))
+
+import board  # noqa: E402
 from conformance import c_harness  # noqa: E402
+from kilolib_build import kilolib_dir  # noqa: E402
 from swarmvm.image import chunks  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.render import write_outputs  # noqa: E402
@@ -32,26 +39,63 @@ CORPUS = ROOT / "tests" / "corpus" / "openswarm"
 SUPERVISOR_A = CORPUS / "hitl_leader.yaml"       # 10 events (6 public), 5 supervisors
 SUPERVISOR_B = CORPUS / "network_leader.yaml"    # 8 of A's events, at other indices; 4 supervisors
 NAME = "robot"
+# A kilolib tick by which the program runs: kilolib, idle, blinks its LED with 200 ms delays, so
+# it takes the RUN message (sent at tick 1) up to 7 ticks later; messages before that are lost.
+RUNNING = 12
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
-CONTROLLER = r"""/* Test controller (tests/kilobot_stream_demo.py): checks follow a fixed pattern of kilo_ticks,
- * each step prints one canonical trace line (docs/conformance.md), numbered from the last
- * (re)start; stream statuses print as "swap ok <length>", "stream refused <code>", ... */
+CONTROLLER = r"""/* Test controller (tests/kilobot_stream_demo.py): checks follow a fixed pattern of the step
+ * count, each step prints one canonical trace line (docs/conformance.md), numbered from the
+ * last (re)start; stream statuses print as "swap ok <length>", "stream refused <code>", ...
+ * Output: kilolib's debug.h (USART0). */
+#define DEBUG
 #include "kilolib.h"
-#include "kilolib_emu.h"
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"   /* kilolib's debug.h, under -Wextra */
+#include "debug.h"
+#pragma GCC diagnostic pop
 #include "%(name)s_tables.h"
 #include "%(name)s_app.h"
 
 static const char names[NUM_EVENTS][%(width)d] SVM_PROGMEM = {%(names)s};
 static uint8_t fired[NUM_EVENTS];
 static uint8_t nfired;
-static uint16_t step;
+static uint16_t step, steps;
+
+static void put_char(char c)
+{
+    static uint8_t ready;
+    if (!ready) {
+        debug_init();
+        ready = 1;
+    }
+    putchar(c);
+}
+
+static void put_text(const char *s)
+{
+    while (*s != '\0') {
+        put_char(*s++);
+    }
+}
+
+static void put_uint(uint32_t value)
+{
+    char digits[10];
+    uint8_t n = 0;
+    do {
+        digits[n++] = (char)('0' + value %% 10u);
+        value /= 10u;
+    } while (value != 0u);
+    while (n != 0u) {
+        put_char(digits[--n]);
+    }
+}
 
 /* Whether this program's event k occurs now (the same formula as the test's `pattern`). */
 static unsigned char pattern(uint8_t k)
 {
-    uint16_t t = (uint16_t)kilo_ticks;
-    return (unsigned char)((t + 3u * k) %% (k %% 4u + 2u) == 0u);
+    return (unsigned char)((steps + 3u * k) %% (k %% 4u + 2u) == 0u);
 }
 
 static void record(uint8_t k)
@@ -66,32 +110,37 @@ static void print_name(uint8_t k)
     const char *p = names[k];
     char c;
     while ((c = (char)SVM_FLASH_BYTE(p++)) != '\0') {
-        kilo_emu_put(c);
+        put_char(c);
     }
 }
 
-void kilo_emu_after_loop(void)
+void svm_kilobot_after_step(void)
 {
     const svm_vm_t *vm = %(name)s_vm();
     uint8_t i;
-    kilo_emu_print_uint(++step);
-    kilo_emu_put(' ');
+    if (steps++ == 0u) {
+        put_text("first ");
+        put_uint(kilo_ticks);
+        put_char('\n');
+    }
+    put_uint(++step);
+    put_char(' ');
     if (nfired == 0) {
-        kilo_emu_put('-');
+        put_char('-');
     }
     for (i = 0; i < nfired; i++) {
         if (i != 0) {
-            kilo_emu_put(',');
+            put_char(',');
         }
         print_name(fired[i]);
     }
     for (i = 0; i < svm_num_supervisors(vm); i++) {
-        kilo_emu_put(i != 0 ? ',' : ' ');
-        kilo_emu_print_uint(svm_state(vm, i));
+        put_char(i != 0 ? ',' : ' ');
+        put_uint(svm_state(vm, i));
     }
-    kilo_emu_put(' ');
-    kilo_emu_print_uint(svm_violations(vm));
-    kilo_emu_put('\n');
+    put_char(' ');
+    put_uint(svm_violations(vm));
+    put_char('\n');
     nfired = 0;
 }
 
@@ -99,24 +148,24 @@ void %(name)s_on_stream(uint8_t status, uint16_t value)
 {
     switch (status) {
     case SVM_STREAM_RECEIVING:
-        kilo_emu_print("stream receiving\n");
+        put_text("stream receiving\n");
         return;
     case SVM_STREAM_COMPLETE:
-        kilo_emu_print("swap ok ");
+        put_text("swap ok ");
         step = 0;
         break;
     case SVM_STREAM_OUT_OF_SEQUENCE:
-        kilo_emu_print("stream gap ");
+        put_text("stream gap ");
         break;
     case SVM_STREAM_TOO_LARGE:
-        kilo_emu_print("stream too large ");
+        put_text("stream too large ");
         break;
     default:
-        kilo_emu_print("stream refused ");
+        put_text("stream refused ");
         break;
     }
-    kilo_emu_print_uint(value);
-    kilo_emu_put('\n');
+    put_uint(value);
+    put_char('\n');
 }
 %(callbacks)s"""
 
@@ -138,54 +187,44 @@ def controller_source(compiled):
                              names=", ".join('"EV_%s"' % e for e in events), callbacks="".join(callbacks))
 
 
-def script_header(messages, loops):
-    """kilo_emu_script.h: ``messages`` = [(loop, type, 9 data bytes)], sorted by loop."""
-    rows = ["    {%du, 0x%02xu, {%s}}," % (loop, kind, ", ".join("0x%02x" % b for b in data))
-            for loop, kind, data in messages]
-    return "\n".join(["/* Scripted messages, generated by tests/kilobot_stream_demo.py. */",
-                      "#define KILO_EMU_LOOPS %du" % loops,
-                      "#define KILO_EMU_SCRIPT_COUNT %du" % len(messages),
-                      "static const kilo_emu_rx_t kilo_emu_script[KILO_EMU_SCRIPT_COUNT] PROGMEM = {",
-                      *rows, "};", ""])
-
-
 class Program:
-    """Supervisor A's Kilobot application with the test controller, built once in ``workdir``;
-    ``run`` links it with a message script and runs it in simavr."""
+    """Supervisor A's Kilobot application with the test controller, built once in ``workdir``
+    against the real kilolib; ``run`` runs it on the simavr Kilobot board."""
 
-    def __init__(self, workdir, supervisor=SUPERVISOR_A):
+    def __init__(self, workdir, supervisor=SUPERVISOR_A, defines=()):
         self.workdir = Path(workdir)
         self.compiled = compile_inputs([str(supervisor)], name=NAME)
         self.workdir.mkdir(parents=True, exist_ok=True)
         write_outputs(self.workdir, generate(self.compiled, "kilobot"))
         (self.workdir / ("%s_controller.c" % NAME)).write_text(controller_source(self.compiled))
-        app = (self.workdir / ("%s_app.h" % NAME)).read_text()
-        self.chunk_type = int(re.search(r"#define SVM_MSG_IMAGE_CHUNK (0x[0-9a-fA-F]+)u", app).group(1), 16)
+        runtime = (self.workdir / "swarmvm_kilobot.h").read_text()
+        self.chunk_type = int(re.search(r"#define SVM_MSG_IMAGE_CHUNK (0x[0-9a-fA-F]+)u", runtime).group(1), 16)
         # A's exact limits: a streamed image may only use A's events, and the corpus images
         # streamed here have no more supervisors or states than A.
-        self.flags = [*c_harness.KILOBOT_FLAGS, *STRICT, *re.findall(
-            r"-DSVM_MAX_[A-Z_]+=[0-9]+", (self.workdir / "Makefile").read_text()), "-DSVM_STREAM",
-            "-I%s" % (FIRMWARE / "kilobot")]
-        self.objects = []
+        kilolib = kilolib_dir()
+        limits = re.findall(r"-DSVM_MAX_[A-Z_]+=[0-9]+", (self.workdir / "Makefile").read_text())
         sources = ["%s_%s.c" % (NAME, part) for part in ("app", "controller", "tables")]
-        for source in sources + ["swarmvm.c", "swarmvm_stream.c"]:
-            obj = source[:-2] + ".o"
-            self._cc("-c", source, "-o", obj)
-            self.objects.append(obj)
+        self.elf = self.workdir / ("%s.elf" % NAME)
+        subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *STRICT, *limits, "-DSVM_STREAM", *defines, "-I%s" % kilolib,
+                        *sources, "swarmvm.c", "swarmvm_stream.c", "swarmvm_kilobot.c",
+                        str(kilolib / "build" / "kilolib.a"), "-o", self.elf.name],
+                       cwd=self.workdir, check=True, capture_output=True, text=True)
 
-    def _cc(self, *args):
-        subprocess.run(["avr-gcc", *self.flags, *args], cwd=self.workdir, check=True, capture_output=True, text=True)
+    def stream(self, image, first_tick, every=1):
+        """Messages carrying ``image``: one chunk each ``every`` ticks from ``first_tick``."""
+        return [(first_tick + every * k, self.chunk_type, chunk) for k, chunk in enumerate(chunks(image))]
 
-    def stream(self, image, first_loop, every=1):
-        """Messages carrying ``image``: one chunk each ``every`` loops from ``first_loop``."""
-        return [(first_loop + every * k, self.chunk_type, chunk) for k, chunk in enumerate(chunks(image))]
+    def run(self, messages, ticks):
+        """The board's Run of the program receiving ``messages`` [(tick, type, data)] until
+        kilo_ticks reaches ``ticks``."""
+        return board.run(self.elf, ticks, messages)
 
-    def run(self, label, messages, loops):
-        """simavr output lines of the program receiving ``messages`` over ``loops`` loops."""
-        (self.workdir / "kilo_emu_script.h").write_text(script_header(sorted(messages, key=lambda m: m[0]), loops))
-        elf = "%s_%s.elf" % (NAME, label)
-        self._cc("-DKILO_EMU_SCRIPT", "-I.", *self.objects, str(FIRMWARE / "kilobot" / "kilolib_emu.c"), "-o", elf)
-        return c_harness.run_avr(self.workdir / elf, timeout=60).splitlines()
+    @staticmethod
+    def step_of(lines, tick):
+        """The step (counted from 0 over the whole run) at which a message that arrived in
+        kilolib tick ``tick`` counts: the next tick's."""
+        first = next(int(line.split()[1]) for line in lines if line.startswith("first "))
+        return tick + 1 - first
 
 
 def reference(compiled_a, image, first_tick, steps, received=()):
@@ -223,16 +262,17 @@ def main(outdir):
     """Stream B with one corrupted chunk (refused: A keeps running), then B intact (swap)."""
     program = Program(outdir)
     image_b = compile_inputs([str(SUPERVISOR_B)]).image
-    bad = program.stream(image_b, first_loop=4)
+    bad = program.stream(image_b, first_tick=RUNNING)
     bad[3] = (bad[3][0], bad[3][1], bad[3][2][:4] + bytes([bad[3][2][4] ^ 0x40]) + bad[3][2][5:])
-    good = program.stream(image_b, first_loop=bad[-1][0] + 3)
-    last, loops = good[-1][0], good[-1][0] + 12
-    lines = [line for line in program.run("demo", bad + good, loops) if not line.startswith(("tx ", "end"))]
+    good = program.stream(image_b, first_tick=bad[-1][0] + 3)
+    result = program.run(bad + good, good[-1][0] + 14)
+    lines = [line for line in result.lines if not line.startswith("first ")]
     before, swap, after, _ = split(lines)
-    print("Kilobot (simavr atmega328p, emulator-only kilolib) running %s; %s (%d bytes) streamed twice as "
-          "%d chunks (message type 0x%02x), one per loop: loops %d..%d with chunk 3 corrupted, then loops %d..%d intact"
-          % (SUPERVISOR_A.stem, SUPERVISOR_B.stem, len(image_b), len(good), program.chunk_type, bad[0][0], bad[-1][0],
-             good[0][0], last))
+    last = [m.tick for m in result.rx if m.data == good[-1][2]][-1]
+    print("Kilobot (simavr atmega328p, real kilolib, IR from the simavr board) running %s; %s (%d bytes) streamed "
+          "twice as %d chunks (message type 0x%02x), one per kilolib tick: ticks %d..%d with chunk 3 corrupted, "
+          "then ticks %d..%d intact" % (SUPERVISOR_A.stem, SUPERVISOR_B.stem, len(image_b), len(good),
+                                        program.chunk_type, bad[0][0], bad[-1][0], good[0][0], good[-1][0]))
     shown = set(before[:3] + before[-3:] + after[:3] + after[-1:]) | {l for l in lines if not l[:1].isdigit()}
     gap = False
     for line in lines:
@@ -244,11 +284,11 @@ def main(outdir):
             gap = True
     same_a = before == reference(program.compiled, program.compiled.image, 0, len(before))
     same_b = after == reference(program.compiled, image_b, len(before), len(after))
-    print("%d steps of %s, then \"%s\" in loop %d (the last chunk's), then %d steps of %s from its initial states; "
-          "both traces equal the Python reference VM's: %s"
+    print("%d steps of %s, then \"%s\" at the step after the last chunk came (tick %d), then %d steps of %s from its "
+          "initial states; both traces equal the Python reference VM's: %s"
           % (len(before), SUPERVISOR_A.stem, swap, last, len(after), SUPERVISOR_B.stem,
              "yes" if same_a and same_b else "NO"))
-    return 0 if swap and same_a and same_b else 1
+    return 0 if swap and same_a and same_b and len(before) == Program.step_of(result.lines, last) else 1
 
 
 if __name__ == "__main__":

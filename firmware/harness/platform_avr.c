@@ -4,9 +4,12 @@
  * Output goes to USART0 (simavr prints it on stderr, a line at a time); the run ends with
  * cli(); sleep_cpu(), which simavr reports as a normal exit. With -DSVM_HARNESS_CYCLES,
  * Timer1 at prescaler 1 counts the CPU cycles of each step (a step must stay under 65,536).
- * With -DSVM_HARNESS_EEPROM the image is also written to EEPROM and run from there.
+ * With -DSVM_HARNESS_EEPROM the image is also written to EEPROM and run from there, from the
+ * first address kilolib leaves free (swarmvm_kilobot_eeprom.h): never over a Kilobot's
+ * calibration.
  */
 #include "svm_harness.h"
+#include "swarmvm_kilobot_eeprom.h"
 
 #include <avr/eeprom.h>
 #include <avr/interrupt.h>
@@ -21,12 +24,9 @@ void svm_harness_putc(char c)
 }
 
 #ifdef SVM_HARNESS_EEPROM
-/* From EEPROM address 1: address 0 would be a null pointer, which means "no image". */
-#define EEPROM_IMAGE_AT 1u
-
 const uint8_t *svm_harness_to_eeprom(const uint8_t *image, uint16_t length)
 {
-    uint8_t *at = (uint8_t *)(uintptr_t)EEPROM_IMAGE_AT;
+    uint8_t *at = (uint8_t *)(uintptr_t)SVM_KILOBOT_EEPROM_FREE;
     uint16_t i;
     for (i = 0; i < length; i++) {
         eeprom_update_byte(at + i, pgm_read_byte(image + i));

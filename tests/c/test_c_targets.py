@@ -1,8 +1,8 @@
 """`swarmvm gen --target c` and `--target kilobot`: deterministic output, kept skeletons, and
 programs that build and behave: the c target's control loop on the host, a controller written
 against Nadzoru's C API (SCT_*) printing the reference trace, and a Kilobot application for
-every corpus supervisor linked with the official flags, within 28,672 bytes of flash and 1 KB of
-stack room, running in simavr."""
+every corpus supervisor built by its generated Makefile against the real kilolib, within 28,672
+bytes of flash and 1 KB of stack room, running in simavr (the Kilobot board)."""
 
 import re
 import subprocess
@@ -11,8 +11,8 @@ import pytest
 
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference
+from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
-from checkout import FIRMWARE
 
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
@@ -107,92 +107,28 @@ def test_nadzoru_style_controller_prints_the_reference_trace(tmp_path):
 
 
 def kilobot_build(path, tmp_path):
+    """The generated Kilobot application, built by its own Makefile against the real kilolib."""
     name = path.rsplit("/", 1)[-1][:-5]
     gen(path, "kilobot", tmp_path, name)
-    flags = re.findall(r"-DSVM_[A-Z_]+=[A-Z_0-9]+", (tmp_path / "Makefile").read_text())
-    elf = tmp_path / (name + ".elf")
-    sources = [tmp_path / f for f in (name + "_app.c", name + "_controller.c", name + "_tables.c", "swarmvm.c")]
-    subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *STRICT, *flags, "-I%s" % (FIRMWARE / "kilobot"),
-                    *map(str, sources), str(FIRMWARE / "kilobot" / "kilolib_emu.c"), "-o", str(elf)],
-                   check=True, capture_output=True, text=True)
-    return elf
+    subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
+                    name + ".elf"], cwd=tmp_path, check=True, capture_output=True, text=True)
+    return tmp_path / (name + ".elf")
 
 
+RED = 3     # RGB(3, 0, 0): the application's "image refused"
+
+
+@pytest.mark.emulator
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])
 def test_kilobot_application_fits_and_runs(path, tmp_path):
+    board_or_skip()
     elf = kilobot_build(path, tmp_path)
     sizes = dict((k, int(v)) for k, v in re.findall(r"^\.(text|data|bss)\s+(\d+)",
                  subprocess.run(["avr-size", "-A", str(elf)], capture_output=True, text=True).stdout, re.M))
     assert sizes["text"] + sizes.get("data", 0) <= KILOBOT_FLASH
     assert KILOBOT_SRAM - sizes.get("data", 0) - sizes.get("bss", 0) >= MIN_STACK
-    output = c_harness.run_avr(elf)
-    assert output.splitlines()[-1] == "end"        # kilo_start ran setup and every loop
-    assert "color 3" not in output.splitlines()      # setup did not signal a refused image (red)
-
-
-HOST_KILOLIB = r"""
-/* Test-only host kilolib: kilo_start drives the generated application's message glue. */
-#include <stdio.h>
-#include <string.h>
-#include "kilolib.h"
-#include "nw_tables.h"
-
-void nw_send(uint8_t event);   /* nw_app.c */
-
-message_rx_t kilo_message_rx;
-message_tx_t kilo_message_tx;
-message_tx_success_t kilo_message_tx_success;
-volatile uint32_t kilo_ticks;
-uint16_t kilo_uid;
-uint8_t kilo_turn_left, kilo_turn_right, kilo_straight_left, kilo_straight_right;
-
-void kilo_init(void) {}
-void set_motors(uint8_t l, uint8_t r) { (void)l; (void)r; }
-void spinup_motors(void) {}
-void set_color(uint8_t c) { printf("color %u\n", (unsigned)c); }
-int16_t get_ambientlight(void) { return 0; }
-int16_t get_voltage(void) { return 0; }
-uint8_t estimate_distance(const distance_measurement_t *d) { (void)d; return 0; }
-uint8_t rand_soft(void) { return 0; }
-uint8_t rand_hard(void) { return 0; }
-uint16_t message_crc(const message_t *m) { return (uint16_t)(m->data[0] + 1u); }
-void delay(uint16_t ms) { (void)ms; }
-
-void kilo_start(void (*setup)(void), void (*loop)(void))
-{
-    message_t in, *out;
-    distance_measurement_t d = {0, 0};
-    unsigned first, second;
-    setup();
-    memset(&in, 0, sizeof in);
-    memcpy(in.data, "exchange", 8);
-    in.type = NORMAL;
-    kilo_message_rx(&in, &d);
-    first = nw_check_received_exchange();
-    second = nw_check_received_exchange();
-    printf("exchange %u %u\n", first, second);
-    printf("message %u\n", nw_check_received_message());
-    printf("idle_tx %u\n", kilo_message_tx() == 0);
-    nw_send(EV_relay);
-    out = kilo_message_tx();
-    printf("tx %.9s crc %u\n", (const char *)out->data, (unsigned)out->crc);
-    kilo_message_tx_success();
-    printf("after_success %u\n", kilo_message_tx() == 0);
-    loop();
-}
-"""
-
-
-def test_kilobot_messages_map_to_public_events(tmp_path):
-    """Received message "x" makes EV__x occur once; a controllable public event queues its
-    message until kilolib reports it sent (generated app glue, on the host)."""
-    path = next(p for p in SUPERVISORS if p.endswith("/network_worker.yaml"))
-    gen(path, "kilobot", tmp_path, "nw")
-    (tmp_path / "host_kilolib.c").write_text(HOST_KILOLIB)
-    flags = re.findall(r"-DSVM_MAX_[A-Z_]+=[0-9]+", (tmp_path / "Makefile").read_text())
-    subprocess.run(["gcc", *STRICT, *flags, "-I%s" % (FIRMWARE / "kilobot"), "nw_app.c", "nw_controller.c",
-                    "nw_tables.c", "swarmvm.c", "host_kilolib.c", "-o", "app"], cwd=tmp_path, check=True,
-                   capture_output=True, text=True)
-    out = subprocess.run([str(tmp_path / "app")], capture_output=True, text=True, check=True).stdout.splitlines()
-    assert out[:5] == ["exchange 1 0", "message 0", "idle_tx 1", "tx relay crc %d" % (ord("r") + 1),
-                       "after_success 1"]
+    run = board.run(elf, ticks=40, read="last_step")
+    # Started by RUN, the VM steps at every kilolib tick to the end (last_step: the tick of the
+    # runtime's last step), and setup never signalled a refused image.
+    assert run.end[:1] == (40,) and run.ram >= 39
+    assert RED not in [colour for tick, colour in run.leds if tick > run.rx[0].tick]

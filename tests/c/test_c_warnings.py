@@ -9,6 +9,7 @@ import pytest
 
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, batch
+from kilobot.needs import kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
 from swarmvm.runtime import RUNTIME_C
 from checkout import FIRMWARE
@@ -72,8 +73,8 @@ def test_runtime_compiles_without_warning(name, generated, tmp_path):
         sources.append(harness / "platform_avr.c")
         app = generated / "kilobot"
         sources += [app / "energy_worker_app.c", app / "energy_worker_controller.c", app / "energy_worker_tables.c",
-                    FIRMWARE / "kilobot" / "kilolib_emu.c"]
-        includes += [app, FIRMWARE / "kilobot"]
+                    app / "swarmvm_kilobot.c"]
+        includes += [app, kilolib_or_skip()]
     else:
         app = generated / "c"
         sources += [app / "energy_worker_main.c", app / "energy_worker_controller.c", app / "energy_worker_tables.c"]

@@ -128,9 +128,16 @@ def avr_ram(elf):
     return int(sizes.get("data", 0)) + int(sizes.get("bss", 0))
 
 
+def eeprom_image_at():
+    """Where the harness writes the image in EEPROM: the first address kilolib leaves free
+    (runtime_c/swarmvm_kilobot_eeprom.h, its one definition)."""
+    header = (RUNTIME_C / "swarmvm_kilobot_eeprom.h").read_text()
+    return int(re.search(r"#define SVM_KILOBOT_EEPROM_FREE (0x[0-9A-Fa-f]+)u", header).group(1), 16)
+
+
 def fits_eeprom(batch):
-    """Whether the image fits the ATmega328P's EEPROM from address 1 (0 is a null pointer)."""
-    return len(batch.image) <= AVR_EEPROM - 1
+    """Whether the image fits the ATmega328P's EEPROM from kilolib's first free address."""
+    return len(batch.image) <= AVR_EEPROM - eeprom_image_at()
 
 
 def build_avr(batch, outdir, cycles=False, extra=(), loaded_modes=None, eeprom=False):
