@@ -16,6 +16,7 @@ from .runtime import python_vm
 from .script import format_script, parse_script, random_script
 from .targets import TARGETS, generate
 from .render import write_outputs
+from .studies import cli as studies_cli
 
 vm = python_vm()
 
@@ -212,3 +213,8 @@ def footprint(elfs, json_path, kilobot_flash, kilobot_stack, vm_limit):
         more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
         click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
         sys.exit(1)
+
+
+main.add_command(studies_cli.sim)
+main.add_command(studies_cli.sweep)
+main.add_command(studies_cli.plot)
