@@ -83,18 +83,17 @@ def skip_dead_adverts(world: World, auction: Auction, external: int) -> int:
     start, heard, period = auction.tick, auction.heard, world.params.advert_period_s
     if external - 2 < start:
         return start + 1
-    pending = np.asarray(world.pending, dtype=np.int64)
+    pending, opens, falling = _round_robin_state(world, heard)
     size = len(pending)
-    first = world.pending.index(auction.order)
-    offset = ((np.arange(size) - first) % size)[None, :]          # adverts until each order's turn
-    rows, columns = heard[:, None], pending[None, :]
-    opens, closes = world.bid_start[rows, columns], world.bid_stop[rows, columns]
-    wait = np.maximum(0, -((start + 1 - opens) // period))         # ceil((opens - start - 1) / period)
-    advert = offset + size * np.maximum(0, -((offset - wait) // size))   # first turn with the window open
-    bids = (opens < NEVER) & (start + period * advert + 1 < closes)
-    due = np.where(bids, advert, NEVER)
-    if world.params.forecast:                                      # a reservation answers at once
-        due = np.where((opens < NEVER) & world.fleet.rising(rows), offset, due)
+    first = int(np.searchsorted(pending, auction.order))
+    offset = (np.arange(size) - first) % size               # adverts until each order's turn
+    due = _first_advert(opens, NEVER, offset, size, start, period)
+    if world.params.forecast:                               # a reservation answers at once
+        due = np.where(opens < NEVER, offset, due)
+    if len(falling):                                        # drones that bid only until a tick
+        window = np.ix_(falling, pending)
+        due = np.minimum(due, _first_advert(world.bid_start[window], world.bid_stop[window], offset, size, start,
+                                            period).min(axis=0))
     skipped = min(int(due.min()), (external - 2 - start) // period + 1)
     if skipped < 1:
         return start + 1
@@ -103,3 +102,25 @@ def skip_dead_adverts(world: World, auction: Auction, external: int) -> int:
     world.last_ad = last
     world.auction = Auction(last, int(pending[(first + skipped - 1) % size]), heard, bid_done=True)
     return last + 2
+
+
+def _round_robin_state(world: World, heard: np.ndarray):
+    """The pending orders (array), per order the earliest tick an idle drone whose decision
+    rises with its charge would bid, and the idle drones whose decision falls; cached until
+    the queue, the idle drones or their policies change (``world.version``)."""
+    cache = world.round_robin
+    if cache is None or cache[0] != world.version:
+        pending = np.asarray(world.pending, dtype=np.int64)
+        rising = world.fleet.rising(heard)
+        opens = (world.bid_start[np.ix_(heard[rising], pending)].min(axis=0) if rising.any()
+                 else np.full(len(pending), NEVER))
+        cache = world.round_robin = (world.version, pending, opens, heard[~rising])
+    return cache[1:]
+
+
+def _first_advert(opens, closes, offset, size, start, period):
+    """The first advert (counted from ``start``) of each order, in the round-robin of ``size``
+    pending orders where it comes ``offset``-th, whose bid tick falls in [opens, closes)."""
+    wait = np.maximum(0, -((start + 1 - opens) // period))          # ceil((opens - start - 1) / period)
+    advert = offset + size * np.maximum(0, -((offset - wait) // size))   # first turn with the window open
+    return np.where((opens < NEVER) & (start + period * advert + 1 < closes), advert, NEVER)

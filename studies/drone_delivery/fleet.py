@@ -11,12 +11,9 @@ import numpy as np
 
 from .controller import DroneLogic, linear_classifier_class
 from .energy import NEVER, charged, keep_table, keep_table_negated, measure_level
+from .features import MEAN, SCALE, SEED_LABELS, SEED_POINTS
 from .params import Params
 
-MEAN = (3500.0, 2.75, 50.0)             # feature standardisation (design/STUDIES.md)
-SCALE = (1443.38, 1.299, 28.87)
-SEED_POINTS = [(1000.0, 0.5, 100.0), (6000.0, 5.0, 0.0)]   # the two assumed training points
-SEED_LABELS = [1, 0]
 LEVELS = 1000                           # SoC is read in 0.1 % steps: levels 0..1000
 
 

@@ -26,7 +26,7 @@ def draw_orders(params: Params, rng: np.random.Generator, horizon: int) -> Order
     """Every order arriving before ``horizon``."""
     mean = params.tau_min * 60.0
     chunk = max(16, int(1.2 * horizon / mean) + 16)
-    gaps = []
+    gaps = [np.zeros(0, dtype=np.int64)]
     total = 0
     while total < horizon:
         more = np.maximum(np.ceil(rng.exponential(mean, chunk)), 1).astype(np.int64)

@@ -9,7 +9,7 @@ from typing import List
 import numpy as np
 
 from .metrics import winner_soh_map
-from .sweep import load
+from .sweep import load, summarise
 
 COLOURS = {"least-confident": "#1b9e77", "most-confident": "#e7298a", "random": "#d95f02", "threshold": "#7570b3"}
 MAP_SOCS = np.arange(10, 101, 10)
@@ -44,6 +44,7 @@ def _measured(trials):
 
 def figure16(plt, frames, path: Path, groups) -> Path:
     """(a) delivered vs median delivery time, (b) aborted attempts %, (c) backlog age by arrival week."""
+    from matplotlib.ticker import ScalarFormatter
     trials = _measured(frames["trials"]).copy()
     trials["label"] = _label(trials)
     trials = trials[trials["label"].isin(groups)]
@@ -72,6 +73,7 @@ def figure16(plt, frames, path: Path, groups) -> Path:
                         alpha=0.35 + 0.65 * (week + 1) / len(table.columns))
             bottom += table[week].values
     axes[0].set_xscale("log")
+    axes[0].xaxis.set_major_formatter(ScalarFormatter())
     axes[0].set_xlabel("median delivery time (min)")
     axes[0].set_ylabel("delivered parcels")
     axes[0].legend(fontsize=7)
@@ -109,7 +111,7 @@ def figure18(plt, frames, path: Path, tau: float) -> Path:
     maps = [winner_soh_map(rows["soh"].values, rows[["w_distance", "w_mass", "w_soc"]].values, rows["intercept"].values,
                            MAP_SOCS, MAP_DISTANCES, MAP_MASSES)
             for _, rows in drones.groupby("key")]
-    figure, axes = plt.subplots(2, 5, figsize=(13, 5.2), sharex=True, sharey=True)
+    figure, axes = plt.subplots(2, 5, figsize=(12, 5), sharex=True, sharey=True, layout="constrained")
     if maps:
         with np.errstate(invalid="ignore"):
             import warnings
@@ -120,6 +122,7 @@ def figure18(plt, frames, path: Path, tau: float) -> Path:
             image = ax.imshow(mean[index].T, origin="lower", aspect="auto", cmap="coolwarm", vmin=0.5, vmax=1.0,
                               extent=(MAP_DISTANCES[0], MAP_DISTANCES[-1], MAP_MASSES[0], MAP_MASSES[-1]))
             ax.set_title("SoC %d %%" % MAP_SOCS[index])
+            ax.set_xticks([1000, 3000, 5000])
         figure.colorbar(image, ax=axes.ravel().tolist(), label="mean SoH of the winner")
     for ax in axes[1]:
         ax.set_xlabel("distance (m)")
@@ -147,6 +150,19 @@ def figure20(plt, frames, path: Path, tau: float) -> Path:
     return _save(figure, path)
 
 
+def summary_markdown(frames) -> str:
+    """Medians per configuration as a Markdown table (the reproduction page's numbers)."""
+    table = summarise(dict(frames, trials=_measured(frames["trials"])))
+    lines = ["| rule | tau (min) | runs | delivered | pending | aborted (% of take-offs) | median delivery (min) | final accuracy (%) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for row in table.sort_values(["rule", "threshold", "tau_min"]).itertuples():
+        rule = row.rule if row.rule != "threshold" else "threshold %d %%" % round(100 * row.threshold)
+        lines.append("| %s | %g | %d | %.0f | %.0f | %.0f (%.1f %%) | %.1f | %.1f |" % (
+            rule, row.tau_min, row.runs, row.delivered, row.pending, row.aborted, row.aborted_pct,
+            row.median_delivery_min, 100 * row.final_accuracy))
+    return "\n".join(lines) + "\n"
+
+
 def draw_all(results, out, tau: float = 20.0) -> List[Path]:
     """Every figure the results allow, into ``out``; returns the files written."""
     frames = load(results)
@@ -171,4 +187,7 @@ def draw_all(results, out, tau: float = 20.0) -> List[Path]:
     if (trials["pretrain_weeks"] > 0).any():
         written.append(figure20(plt, frames, out / "uav_fig20_forecast.png", tau))
     plt.close("all")
+    summary = out / "uav_summary.md"
+    summary.write_text(summary_markdown(frames))
+    written.append(summary)
     return written

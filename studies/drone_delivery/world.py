@@ -92,6 +92,8 @@ class World:
         self.auction: Optional[Auction] = None
         self.delivered_tick = np.full(len(orders), -1, dtype=np.int64)
         self.adverts = self.takeoffs = self.aborts = self.losses = self.reservations = 0
+        self.version = 0        # bumped whenever the queue, the idle drones or their policies change
+        self.round_robin = None  # event engine: (version, pending array, earliest bids, falling drones)
         # Event engine: the ticks [start, stop) in which each idle drone would bid on each pending order.
         self.bid_start = np.full((size, len(orders)), NEVER, dtype=np.int64) if not exhaustive else None
         self.bid_stop = np.full((size, len(orders)), NEVER, dtype=np.int64) if not exhaustive else None
@@ -106,6 +108,7 @@ class World:
 
     def _pend(self, order: int) -> None:
         bisect.insort(self.pending, order)
+        self.version += 1
         if self.bid_start is not None:
             self._bid_windows(self.idle(), np.array([order]))
 
@@ -205,6 +208,7 @@ class World:
                 self._pend(flight.order)
             return
         self.phase[drone] = IDLE
+        self.version += 1
         self.land_tick[drone] = t
         self.land_soc[drone] = max(0.0, flight.soc_turn - (t - flight.turn) * flight.drain_back)
         self.fleet.learn(drone, flight.features, flight.delivered)
@@ -223,6 +227,7 @@ class World:
                         p.drain_per_tick(mass, soh), p.drain_per_tick(0.0, soh), int(outbound_ticks(p, distance)))
         self.flights[drone] = flight
         self.phase[drone] = OUT
+        self.version += 1
         self.takeoffs += 1
         if not self.exhaustive:
             self._plan(drone, flight)
@@ -300,6 +305,7 @@ class World:
             self.pending.remove(auction.order)
             self.after = None
             self.phase[reserver] = RESERVED
+            self.version += 1
             self.reserved[reserver] = auction.order
             self.reservations += 1
             if not self.exhaustive:

@@ -5,7 +5,8 @@ of the fleet decides exactly as the classifiers do."""
 import numpy as np
 
 from swarmvm.studies.drone_delivery.controller import linear_classifier_class
-from swarmvm.studies.drone_delivery.fleet import MEAN, SCALE, Fleet
+from swarmvm.studies.drone_delivery.features import MEAN, SCALE
+from swarmvm.studies.drone_delivery.fleet import Fleet
 from swarmvm.studies.drone_delivery.params import Params
 
 
@@ -57,3 +58,20 @@ def test_bid_window_is_the_first_tick_the_decision_turns_yes():
             assert stop[drone, order] == NEVER             # rising drones never stop bidding
     assert (start < NEVER).sum() >= 2
     assert MEAN == (3500.0, 2.75, 50.0) and SCALE == (1443.38, 1.299, 28.87)
+
+
+def test_the_study_runs_the_published_uav_controller():
+    from pathlib import Path
+
+    from swarmvm.studies.drone_delivery.controller import SUPERVISOR, DroneLogic, generated_controller
+    corpus = Path(__file__).resolve().parents[1] / "corpus" / "openswarm" / "uav.yaml"
+    assert SUPERVISOR.read_bytes() == corpus.read_bytes()          # package copy of the corpus file
+    fleet = Fleet(Params(drones=1), np.random.default_rng(0))
+    logic = fleet.logic[0]
+    assert isinstance(logic, DroneLogic) and type(logic.vm.controller).__module__ == generated_controller().__name__
+    assert logic.offer((1000.0, 0.5, 100.0)) and logic.state == 2            # capableTask, bid
+    logic.auction_result(True)
+    assert logic.state == 4                                                   # wonBid, deliver
+    logic.turn()
+    assert logic.state == 0 and logic.vm.violations == 0                      # condReturn, return
+    assert not logic.offer((6000.0, 5.0, 0.0)) and logic.state == 0           # notCapableTask
