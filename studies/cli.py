@@ -90,7 +90,7 @@ def sim_uav(mode, as_json, **values):
                  "median_delivery_min", "mean_delivery_min"):
         click.echo("%-20s %s" % (name, summary[name]))
     click.echo("%-20s %s" % ("accuracy_by_week", " ".join("%.3f" % a for a in summary["accuracy_by_week"])))
-    click.echo("%-20s %.2f s" % ("time", summary["seconds"]))
+    click.echo("%-20s %.2f s (CPU %.2f s)" % ("time", summary["seconds"], summary["cpu_seconds"]))
 
 
 def _floats(text: str):

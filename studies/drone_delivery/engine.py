@@ -29,7 +29,7 @@ def run(params: Params, mode: str = "event") -> Result:
     the auction draws, the accuracy probe and the pre-training are spawned from it."""
     if mode not in MODES:
         raise ValueError("mode must be one of %s" % (MODES,))
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     streams = [np.random.default_rng(s) for s in np.random.SeedSequence(params.seed).spawn(5)]
     fleet_rng, orders_rng, auction_rng, probe_rng, pretrain_rng = streams
     fleet = Fleet(params, fleet_rng)
@@ -42,7 +42,7 @@ def run(params: Params, mode: str = "event") -> Result:
     world = World(params, fleet, draw_orders(params, orders_rng, params.horizon), auction_rng,
                   exhaustive=mode == "tick")
     accuracy = simulate(world, params.horizon, probe)
-    return Result.collect(params, world, accuracy, time.perf_counter() - started)
+    return Result.collect(params, world, accuracy, time.perf_counter() - started, time.process_time() - cpu)
 
 
 def simulate(world: World, horizon: int, probe=None) -> list:

@@ -53,15 +53,16 @@ class Result:
     intercept: np.ndarray
     lost: np.ndarray
     vm_states: list
-    seconds: float
+    seconds: float                 # wall time of the trial
+    cpu_seconds: float             # CPU time of this process (one core)
 
     @classmethod
-    def collect(cls, params: Params, world, accuracy: list, seconds: float) -> "Result":
+    def collect(cls, params: Params, world, accuracy: list, seconds: float, cpu_seconds: float) -> "Result":
         fleet = world.fleet
         return cls(params, world.orders.tick, world.delivered_tick.copy(), world.adverts, world.takeoffs,
                    world.aborts, world.losses, world.reservations,
                    np.array(accuracy).reshape(len(accuracy), fleet.size), fleet.soh.copy(), fleet.weights.copy(),
-                   fleet.intercept.copy(), world.phase == LOST, [logic.state for logic in fleet.logic], seconds)
+                   fleet.intercept.copy(), world.phase == LOST, [logic.state for logic in fleet.logic], seconds, cpu_seconds)
 
     @property
     def delivery_min(self) -> np.ndarray:
@@ -87,7 +88,7 @@ class Result:
             accuracy_by_week=[float(a) for a in self.accuracy.mean(axis=1)],
             pending_by_week=[int(v) for v in self.by_arrival_week(np.ones(len(self.arrival)))],
             backlog_age_h_by_week=self.by_arrival_week(age_h),
-            seconds=round(self.seconds, 3))
+            seconds=round(self.seconds, 3), cpu_seconds=round(self.cpu_seconds, 3))
 
 
 def winner_soh_map(soh, weights, intercept, socs, distances, masses, rule="least-confident"):

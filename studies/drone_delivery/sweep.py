@@ -50,7 +50,7 @@ def run_trial(params: Params) -> Dict[str, list]:
     summary = result.summary()
     row = dict(key=key, **{k: v for k, v in params.to_dict().items()})
     for name in ("orders", "delivered", "pending", "aborted", "takeoffs", "advertisements", "lost",
-                 "reservations", "median_delivery_min", "mean_delivery_min", "seconds"):
+                 "reservations", "median_delivery_min", "mean_delivery_min", "seconds", "cpu_seconds"):
         row[name] = summary[name]
     accuracy = [dict(key=key, week=w, drone=d, accuracy=float(a))
                 for w, values in enumerate(result.accuracy) for d, a in enumerate(values)]
@@ -141,6 +141,7 @@ def summarise(frames) -> "pandas.DataFrame":
     accuracy = frames["accuracy"][final].groupby("key")["accuracy"].mean().rename("final_accuracy")
     trials = trials.join(accuracy, on="key")
     trials["threshold"] = np.where(trials["rule"] == "threshold", trials["threshold"], np.nan)
-    columns = ["delivered", "pending", "aborted", "aborted_pct", "median_delivery_min", "final_accuracy", "seconds"]
+    columns = ["delivered", "pending", "aborted", "aborted_pct", "median_delivery_min", "final_accuracy"]
+    columns += [c for c in ("seconds", "cpu_seconds") if c in trials.columns]
     grouped = trials.groupby(["rule", "threshold", "tau_min", "forecast"], dropna=False)[columns]
     return grouped.median().join(grouped.size().rename("runs")).reset_index()

@@ -16,7 +16,7 @@ def specs():
 
 def frames_without_timing(out):
     frames = sweep.load(out)
-    frames["trials"] = frames["trials"].drop(columns=["seconds"])
+    frames["trials"] = frames["trials"].drop(columns=["seconds", "cpu_seconds"])
     return frames
 
 
