@@ -5,7 +5,7 @@ flight's turn or landing, a reserved drone's departure, the stages of an auction
 bid, a weekly accuracy probe. Advertisements that nobody answers are skipped in bulk: the
 queue and the idle drones do not change until the next external event, every idle drone's
 earliest bidding tick for every pending order is cached (it depends only on its landing state
-and its classifier), so the first advertisement in the round-robin that draws a bid is found
+and its classifier; World.earliest keeps the minimum over the idle drones per order), so the first advertisement in the round-robin that draws a bid is found
 with one array expression; the ones before it are only counted."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from .fleet import Fleet
 from .metrics import AccuracyProbe, Result
 from .orders import draw_orders
 from .params import Params
-from .world import Auction, World
+from .world import IDLE, Auction, World
 
 MODES = ("event", "tick")
 
@@ -69,7 +69,7 @@ def next_tick(world: World, t: int, bound: int) -> int:
     external = min(external, max(t + 1, int(min(world.next_event.min(), world.reserve_tick.min()))))
     auction = world.auction
     if auction is None:
-        if world.pending and (world.phase == 0).any():
+        if len(world.pending) and (world.phase == IDLE).any():
             return min(external, max(t + 1, world.last_ad + world.params.advert_period_s))
         return external
     if auction.bid_done:
@@ -83,14 +83,16 @@ def skip_dead_adverts(world: World, auction: Auction, external: int) -> int:
     start, heard, period = auction.tick, auction.heard, world.params.advert_period_s
     if external - 2 < start:
         return start + 1
-    pending, opens, falling = _round_robin_state(world, heard)
+    pending = world.pending
+    opens = world.earliest[pending]                         # drones whose decision rises with their charge
+    falling = heard[~world.fleet.rising(heard)]             # and the others, which bid only until a tick
     size = len(pending)
     first = int(np.searchsorted(pending, auction.order))
     offset = (np.arange(size) - first) % size               # adverts until each order's turn
     due = _first_advert(opens, NEVER, offset, size, start, period)
     if world.params.forecast:                               # a reservation answers at once
         due = np.where(opens < NEVER, offset, due)
-    if len(falling):                                        # drones that bid only until a tick
+    if len(falling):
         window = np.ix_(falling, pending)
         due = np.minimum(due, _first_advert(world.bid_start[window], world.bid_stop[window], offset, size, start,
                                             period).min(axis=0))
@@ -102,20 +104,6 @@ def skip_dead_adverts(world: World, auction: Auction, external: int) -> int:
     world.last_ad = last
     world.auction = Auction(last, int(pending[(first + skipped - 1) % size]), heard, bid_done=True)
     return last + 2
-
-
-def _round_robin_state(world: World, heard: np.ndarray):
-    """The pending orders (array), per order the earliest tick an idle drone whose decision
-    rises with its charge would bid, and the idle drones whose decision falls; cached until
-    the queue, the idle drones or their policies change (``world.version``)."""
-    cache = world.round_robin
-    if cache is None or cache[0] != world.version:
-        pending = np.asarray(world.pending, dtype=np.int64)
-        rising = world.fleet.rising(heard)
-        opens = (world.bid_start[np.ix_(heard[rising], pending)].min(axis=0) if rising.any()
-                 else np.full(len(pending), NEVER))
-        cache = world.round_robin = (world.version, pending, opens, heard[~rising])
-    return cache[1:]
 
 
 def _first_advert(opens, closes, offset, size, start, period):

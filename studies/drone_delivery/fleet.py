@@ -149,18 +149,20 @@ class Fleet:
         # measure(100 - deficit * KEEP[n]) >= level/10 about when KEEP[n] <= (100 - (level - .5)/10) / deficit
         target = (100.0 - (level - 0.5) / 10.0) / np.where(deficit > 0.0, deficit, 1.0)
         ticks = np.minimum(np.searchsorted(keep_table_negated(params.charge_keep), -target), len(table) - 1).astype(np.int64)
+        ticks = np.where(deficit > 0.0, ticks, 0)                # a full battery stays full
+        possible = level <= LEVELS
 
         def reached(n):
             return measure_level(charged(params, land_soc, n)) >= level
 
         while True:
-            up = ~reached(ticks) & (ticks < len(table) - 1)
-            down = ~up & (ticks > 0) & reached(ticks - 1)
+            up = possible & ~reached(ticks) & (ticks < len(table) - 1)
+            down = possible & ~up & (ticks > 0) & reached(ticks - 1)
             if not (up.any() or down.any()):
                 break
             ticks = ticks + up - down
         land_tick = np.asarray(land_tick)
-        crossing = np.where((level <= LEVELS) & reached(ticks), land_tick + ticks, NEVER)
+        crossing = np.where(possible & reached(ticks), land_tick + ticks, NEVER)
         rising = self.rising(drones)
         start = np.where(rising, crossing, np.where(crossing > land_tick, land_tick, NEVER))
         stop = np.where(rising, NEVER, crossing)

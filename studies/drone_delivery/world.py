@@ -19,7 +19,6 @@ fires notCapableTask, a self-loop of the supervisor's wait state)."""
 
 from __future__ import annotations
 
-import bisect
 import dataclasses
 from typing import List, Optional
 
@@ -85,15 +84,15 @@ class World:
         self.next_event = np.full(size, NEVER, dtype=np.int64)    # event engine: next flight event
         self.reserved = np.full(size, -1, dtype=np.int64)         # order a reserved drone waits for
         self.reserve_tick = np.full(size, NEVER, dtype=np.int64)
-        self.pending: List[int] = []                              # arrived, unallocated, undelivered
+        self.pending = np.zeros(0, dtype=np.int64)                # arrived, unallocated, undelivered (sorted)
         self.arrived = 0
         self.after: Optional[int] = None                          # last advertised order (None: oldest next)
         self.last_ad = -params.advert_period_s
         self.auction: Optional[Auction] = None
         self.delivered_tick = np.full(len(orders), -1, dtype=np.int64)
         self.adverts = self.takeoffs = self.aborts = self.losses = self.reservations = 0
-        self.version = 0        # bumped whenever the queue, the idle drones or their policies change
-        self.round_robin = None  # event engine: (version, pending array, earliest bids, falling drones)
+        # Event engine, per order: the earliest tick an idle drone whose decision rises with its charge would bid.
+        self.earliest = np.full(len(orders), NEVER, dtype=np.int64) if not exhaustive else None
         # Event engine: the ticks [start, stop) in which each idle drone would bid on each pending order.
         self.bid_start = np.full((size, len(orders)), NEVER, dtype=np.int64) if not exhaustive else None
         self.bid_stop = np.full((size, len(orders)), NEVER, dtype=np.int64) if not exhaustive else None
@@ -107,10 +106,22 @@ class World:
         return np.flatnonzero(self.phase == IDLE)
 
     def _pend(self, order: int) -> None:
-        bisect.insort(self.pending, order)
-        self.version += 1
+        self.pending = np.insert(self.pending, np.searchsorted(self.pending, order), order)
         if self.bid_start is not None:
+            self.earliest[order] = NEVER
             self._bid_windows(self.idle(), np.array([order]))
+
+    def _unpend(self, order: int) -> None:
+        self.pending = np.delete(self.pending, np.searchsorted(self.pending, order))
+
+    def _leave_pool(self, drone: int, phase: int) -> None:
+        """An idle drone takes off or reserves: forget it in the per-order earliest bids."""
+        self.phase[drone] = phase
+        if self.earliest is not None and len(self.pending) and self.fleet.rising(drone):
+            orders = self.pending[self.bid_start[drone, self.pending] == self.earliest[self.pending]]
+            idle = self.idle()
+            idle = idle[self.fleet.rising(idle)]
+            self.earliest[orders] = self.bid_start[np.ix_(idle, orders)].min(axis=0) if len(idle) else NEVER
 
     def _bid_windows(self, drones: np.ndarray, orders: np.ndarray) -> None:
         """Event engine: cache when each idle drone would bid on each order."""
@@ -119,6 +130,9 @@ class World:
             start, stop = self.fleet.bid_window(self.params, rows, self.land_tick[rows], self.land_soc[rows],
                                                 self.orders.distance[columns], self.orders.mass[columns])
             self.bid_start[rows, columns], self.bid_stop[rows, columns] = start, stop
+            rising = self.fleet.rising(drones)
+            if rising.any():
+                self.earliest[orders] = np.minimum(self.earliest[orders], start[rising].min(axis=0))
 
     # -- one tick -----------------------------------------------------------------------------------
     def step(self, t: int) -> None:
@@ -208,14 +222,13 @@ class World:
                 self._pend(flight.order)
             return
         self.phase[drone] = IDLE
-        self.version += 1
         self.land_tick[drone] = t
         self.land_soc[drone] = max(0.0, flight.soc_turn - (t - flight.turn) * flight.drain_back)
         self.fleet.learn(drone, flight.features, flight.delivered)
         if not flight.delivered:
             self._pend(flight.order)
         if self.bid_start is not None:
-            self._bid_windows(np.array([drone]), np.array(self.pending, dtype=np.int64))
+            self._bid_windows(np.array([drone]), self.pending)
 
     def _take_off(self, drone: int, order: int, t: int) -> None:
         p = self.params
@@ -226,8 +239,7 @@ class World:
         flight = Flight(order, t, soc0, (distance, mass, reading), p.xi * reading,
                         p.drain_per_tick(mass, soh), p.drain_per_tick(0.0, soh), int(outbound_ticks(p, distance)))
         self.flights[drone] = flight
-        self.phase[drone] = OUT
-        self.version += 1
+        self._leave_pool(drone, OUT)
         self.takeoffs += 1
         if not self.exhaustive:
             self._plan(drone, flight)
@@ -241,16 +253,16 @@ class World:
             self._resolve(auction, t)
         elif auction is not None and t == auction.tick + 1:
             self._bid(auction, t)
-        if self.auction is None and t >= self.last_ad + self.params.advert_period_s and self.pending:
+        if self.auction is None and t >= self.last_ad + self.params.advert_period_s and len(self.pending):
             heard = self.idle()
             if len(heard):
                 self._advertise(heard, t)
 
     def next_order(self) -> int:
         if self.after is None:
-            return self.pending[0]
-        index = bisect.bisect_right(self.pending, self.after)
-        return self.pending[index % len(self.pending)]
+            return int(self.pending[0])
+        index = int(np.searchsorted(self.pending, self.after, side="right"))
+        return int(self.pending[index % len(self.pending)])
 
     def _advertise(self, heard: np.ndarray, t: int) -> None:
         self.auction = Auction(t, self.next_order(), heard)
@@ -296,16 +308,15 @@ class World:
         if won >= 0:
             for drone in auction.bidders:
                 self.fleet.logic[drone].auction_result(drone == won)
-            self.pending.remove(auction.order)
+            self._unpend(auction.order)
             self.after = None
             self._take_off(won, auction.order, t)
             return
         reserver = lowest(auction.reservers, auction.reservation_values)
         if reserver >= 0:
-            self.pending.remove(auction.order)
+            self._unpend(auction.order)
             self.after = None
-            self.phase[reserver] = RESERVED
-            self.version += 1
+            self._leave_pool(reserver, RESERVED)
             self.reserved[reserver] = auction.order
             self.reservations += 1
             if not self.exhaustive:

@@ -70,7 +70,7 @@ def test_allocation_returns_to_the_front_of_the_queue():          # rule (iii)
     assert advertised(w, range(5)) == [0, None, 1, None, 2]       # order 2 advertised at tick 4
     w.land_soc[1], w.land_tick[1] = 100.0, 5                      # drone 1 now full: it bids at tick 5
     assert advertised(w, range(5, 9)) == [None, 0, None, 1]       # 2 allocated at 6; next: oldest (0)
-    assert w.takeoffs == 1 and w.flights[1].order == 2 and w.pending == [0, 1, 3]
+    assert w.takeoffs == 1 and w.flights[1].order == 2 and list(w.pending) == [0, 1, 3]
 
 
 def test_an_aborted_order_returns_to_its_own_slot():              # rule (iv)
@@ -83,11 +83,11 @@ def test_an_aborted_order_returns_to_its_own_slot():              # rule (iv)
     while w.aborts == 0:
         w.step(t)
         t += 1
-    assert w.pending == [1, 2]                                   # order 0 is away with the drone
+    assert list(w.pending) == [1, 2]                                   # order 0 is away with the drone
     while w.phase[0] != IDLE:
         w.step(t)
         t += 1
-    assert w.pending == [0, 1, 2] and w.delivered_tick[0] == -1
+    assert list(w.pending) == [0, 1, 2] and w.delivered_tick[0] == -1
 
 
 def test_a_drone_out_of_energy_is_lost_and_its_order_returns():
@@ -98,7 +98,7 @@ def test_a_drone_out_of_energy_is_lost_and_its_order_returns():
     w.land_soc[:] = 0.04                                          # reads 0.0: abort limit 0, energy gone first
     for t in range(20):
         w.step(t)
-    assert w.losses == 1 and w.phase[0] == LOST and w.pending == [0]
+    assert w.losses == 1 and w.phase[0] == LOST and list(w.pending) == [0]
     assert advertised(w, range(20, 24)) == [None] * 4             # no drone left to advertise to
 
 
