@@ -4,7 +4,6 @@ command line). Each study adds one subcommand per group; the drone-delivery stud
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
 import sys
 

@@ -15,12 +15,15 @@ import json
 import os
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
-from typing import Dict, Iterable, List, Optional, Sequence
+from typing import TYPE_CHECKING, Dict, Iterable, List, Optional, Sequence
 
 import numpy as np
 
 from .engine import run
 from .params import Params
+
+if TYPE_CHECKING:
+    import pandas
 
 TABLES = ("accuracy", "backlog", "drones", "trials")     # trials last: it marks a trial done
 LEARNING_RULES = ("least-confident", "most-confident", "random")

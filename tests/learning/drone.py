@@ -3,7 +3,9 @@ study's features (swarmvm.studies.drone_delivery.features), a labelled task stre
 
 import random
 
-from swarmvm.studies.drone_delivery.features import MEAN, SCALE, SEED_LABELS, SEED_POINTS  # noqa: F401
+from swarmvm.studies.drone_delivery.features import MEAN, SCALE, SEED_LABELS, SEED_POINTS
+
+__all__ = ["MEAN", "SCALE", "SEED_LABELS", "SEED_POINTS", "delivery_stream", "grid"]
 
 
 def delivery_stream(count, seed):

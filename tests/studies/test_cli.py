@@ -37,6 +37,7 @@ def test_sweep_then_plot(tmp_path):
     names = {line.rsplit("/", 1)[-1] for line in plots.output.split()}
     assert {"uav_fig16_rules.png", "uav_fig17_accuracy.png", "uav_fig18_soh_maps.png", "uav_fig19_threshold.png"} <= names
     again = CliRunner().invoke(main, ["plot", "uav", str(out), "-o", str(tmp_path / "again")])
+    assert again.exit_code == 0, again.output
     for name in names:                                   # the figures are deterministic
         assert (tmp_path / "img" / name).read_bytes() == (tmp_path / "again" / name).read_bytes()
     bad = CliRunner().invoke(main, ["sweep", "uav", "-o", str(out), "--rules", "fastest"])
