@@ -10,9 +10,9 @@ mkdir -p "$OUT"
 $S sim uav --json > "$OUT/reference-8weeks.json"
 $S sim uav --json --weeks 1 > "$OUT/reference-1week.json"
 $S sim uav --json --weeks 1 --rule threshold --threshold 0.8 > "$OUT/reference-1week-threshold80.json"
-$S sweep uav -o "$OUT" --taus 20 --runs 5 --thresholds 0.8 --workers "$W" --no-progress
-$S sweep uav -o "$OUT" --taus 5,10,15,25,30 --runs 2 --thresholds 0.8 --workers "$W" --no-progress
-$S sweep uav -o "$OUT" --taus 20 --runs 2 --rules '' --thresholds 0.5,0.6,0.7,0.9,1.0 --workers "$W" --no-progress
-$S sweep uav -o "$OUT" --taus 20 --runs 2 --rules least-confident --thresholds '' --pretrain-weeks 8 --workers "$W" --no-progress
-$S sweep uav -o "$OUT" --taus 20 --runs 2 --rules least-confident --thresholds '' --pretrain-weeks 8 --forecast --workers "$W" --no-progress
+$S sweep uav -o "$OUT" --taus 20 --runs 20 --thresholds 0.8 --workers "$W" --no-progress
+$S sweep uav -o "$OUT" --taus 5,10,15,25,30,35,40 --runs 5 --thresholds 0.8 --workers "$W" --no-progress
+$S sweep uav -o "$OUT" --taus 20 --runs 5 --rules '' --thresholds 0.5,0.6,0.7,0.9,1.0 --workers "$W" --no-progress
+$S sweep uav -o "$OUT" --taus 20 --runs 5 --rules least-confident --thresholds '' --pretrain-weeks 8 --workers "$W" --no-progress
+$S sweep uav -o "$OUT" --taus 20 --runs 5 --rules least-confident --thresholds '' --pretrain-weeks 8 --forecast --workers "$W" --no-progress
 $S plot uav "$OUT" -o docs/studies/img
