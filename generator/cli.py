@@ -16,6 +16,7 @@ from . import footprint as fp
 from .export import FORMATS
 from .render import write_outputs
 from .runtime import python_vm
+from .studies import cli as studies_cli
 
 vm = python_vm()
 
@@ -214,3 +215,8 @@ def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, pro
     _warn(compiled.model.warnings)
     for path in written:
         click.echo(path)
+
+
+main.add_command(studies_cli.sim)
+main.add_command(studies_cli.sweep)
+main.add_command(studies_cli.plot)

@@ -1,12 +1,11 @@
-"""The drone-delivery learning setting of the OpenSwarm study (design/STUDIES.md), shared by the
-learning tests: feature statistics, the two assumed training points and a labelled task stream."""
+"""The drone-delivery learning setting of the OpenSwarm study for the learning tests: the
+study's features (swarmvm.studies.drone_delivery.features), a labelled task stream and a grid."""
 
 import random
 
-MEAN = (3500.0, 2.75, 50.0)
-SCALE = (1443.38, 1.299, 28.87)
-SEED_POINTS = [(1000.0, 0.5, 100.0), (6000.0, 5.0, 0.0)]
-SEED_LABELS = [1, 0]
+from swarmvm.studies.drone_delivery.features import MEAN, SCALE, SEED_LABELS, SEED_POINTS
+
+__all__ = ["MEAN", "SCALE", "SEED_LABELS", "SEED_POINTS", "delivery_stream", "grid"]
 
 
 def delivery_stream(count, seed):

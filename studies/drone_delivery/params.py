@@ -1,0 +1,101 @@
+"""Parameters of one trial: Table 2 of the seed plus what the published runs did where the text
+is silent (design/STUDIES.md), and the constants derived from them."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+RULES = ("least-confident", "most-confident", "random", "threshold")
+TICKS_PER_WEEK = 7 * 24 * 3600          # one tick is one simulated second
+
+
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Everything a trial depends on; the defaults are Table 2 and the reference configuration."""
+
+    rule: str = "least-confident"
+    threshold: float = 0.8              # threshold rule: bid iff SoC >= threshold (fraction)
+    forecast: bool = False              # reservation bids (the forecasting variant)
+    pretrain_weeks: int = 0             # weeks of learning (no forecast) before the measured run
+    tau_min: float = 20.0               # mean order inter-arrival time, minutes
+    weeks: int = 8
+    week_s: int = TICKS_PER_WEEK        # length of a "week" (reporting period); shorter for quick checks
+    drones: int = 25
+    seed: int = 1445
+    frame_kg: float = 10.0
+    battery_kg: float = 10.0
+    rotors: int = 8
+    disc_m2: float = 0.27
+    speed_ms: float = 10.0
+    capacity_wh: float = 800.0
+    soh_min: float = 0.5
+    soh_max: float = 1.0
+    charger_w: float = 100.0
+    charger_eff: float = 0.95
+    d_min_m: float = 1000.0
+    d_max_m: float = 6000.0
+    m_min_kg: float = 0.5
+    m_max_kg: float = 5.0
+    gravity: float = 9.81
+    air_density: float = 1.225
+    xi: float = 0.5                     # abort when SoC <= xi * SoC_takeoff
+    advert_period_s: int = 2
+    deliver_radius_m: float = 80.0
+    home_radius_m: float = 800.0
+    alpha: float = 0.01
+    init_epochs: int = 7                # epochs of the initial fit on the two assumed points
+    accuracy_samples: int = 1000
+
+    def __post_init__(self) -> None:
+        if self.rule not in RULES:
+            raise ValueError("--rule: must be one of %s, got %r" % (", ".join(RULES), self.rule))
+        checks = [("drones", self.drones >= 1, "must be at least 1"),
+                  ("weeks", self.weeks >= 0 and self.pretrain_weeks >= 0, "must not be negative"),
+                  ("tau-min", self.tau_min > 0, "must be positive"),
+                  ("week-s", self.week_s >= 1, "must be positive"),
+                  ("soh-min", 0 < self.soh_min <= self.soh_max <= 1, "need 0 < soh-min <= soh-max <= 1"),
+                  ("d-min-m", 0 < self.d_min_m <= self.d_max_m, "need 0 < d-min-m <= d-max-m"),
+                  ("m-min-kg", 0 <= self.m_min_kg <= self.m_max_kg, "need 0 <= m-min-kg <= m-max-kg"),
+                  ("xi", 0 < self.xi < 1, "must lie in (0, 1)"),
+                  ("threshold", 0 <= self.threshold <= 1, "must lie in [0, 1]"),
+                  ("advert-period-s", self.advert_period_s >= 2, "an auction takes 2 ticks: must be >= 2"),
+                  ("accuracy-samples", self.accuracy_samples >= 1, "must be at least 1")]
+        for option, ok, message in checks:
+            if not ok:
+                raise ValueError("--%s: %s" % (option, message))
+
+    # -- derived constants ------------------------------------------------------------------------
+    @property
+    def horizon(self) -> int:
+        """Ticks of the measured run."""
+        return self.weeks * self.week_s
+
+    def power_w(self, payload_kg):
+        """Equation 14 in W: (g (m_f + m_b + m_p))^1.5 / sqrt(2 n_r rho zeta)."""
+        mass = self.frame_kg + self.battery_kg + payload_kg
+        return (self.gravity * mass) ** 1.5 / math.sqrt(2.0 * self.rotors * self.air_density * self.disc_m2)
+
+    def drain_per_tick(self, payload_kg, soh):
+        """Equation 15: SoC percentage points spent per second of flight."""
+        return 100.0 * self.power_w(payload_kg) / (3600.0 * self.capacity_wh * soh)
+
+    @property
+    def charge_keep(self) -> float:
+        """Equation 13 per second: 100 - SoC is multiplied by this factor every tick."""
+        return 1.0 - self.charger_eff * self.charger_w / (3600.0 * self.capacity_wh)
+
+    @property
+    def full_charge_s(self) -> float:
+        """C_theoretical / (P_c gamma_c) in s: the forecast's linear estimate of a full charge."""
+        return 3600.0 * self.capacity_wh / (self.charger_w * self.charger_eff)
+
+    @property
+    def threshold_pct(self) -> float:
+        return round(100.0 * self.threshold, 9)
+
+    def replace(self, **changes) -> "Params":
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)

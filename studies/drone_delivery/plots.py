@@ -1,0 +1,193 @@
+"""The seed's Figures 16-20 from sweep results (:func:`sweep.load`), as deterministic PNGs
+(Agg backend, no timestamps in the files)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List
+
+import numpy as np
+
+from .metrics import winner_soh_map
+from .sweep import load, summarise
+
+COLOURS = {"least-confident": "#1b9e77", "most-confident": "#e7298a", "random": "#d95f02", "threshold": "#7570b3"}
+MAP_SOCS = np.arange(10, 101, 10)
+MAP_DISTANCES = np.arange(1000, 5001, 50)
+MAP_MASSES = np.round(np.arange(0.5, 5.0001, 0.05), 2)
+
+
+def _pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    plt.rcParams.update({"font.size": 8, "svg.hashsalt": "swarmvm"})
+    return plt
+
+
+def _save(figure, path: Path) -> Path:
+    figure.tight_layout()
+    figure.savefig(str(path), dpi=110, metadata={"Software": None})
+    figure.clf()
+    return path
+
+
+def _label(trials):
+    return np.where(trials["rule"] == "threshold", "threshold " + (100 * trials["threshold"]).round().astype(int).astype(str) + "%",
+                    trials["rule"])
+
+
+def _measured(trials):
+    """Trials of the main grid (no forecasting experiment)."""
+    return trials[(~trials["forecast"]) & (trials["pretrain_weeks"] == 0)]
+
+
+def figure16(plt, frames, path: Path, groups) -> Path:
+    """(a) delivered vs median delivery time, (b) aborted attempts %, (c) backlog age by arrival week."""
+    from matplotlib.ticker import ScalarFormatter
+    trials = _measured(frames["trials"]).copy()
+    trials["label"] = _label(trials)
+    trials = trials[trials["label"].isin(groups)]
+    figure, axes = plt.subplots(1, 3, figsize=(12, 3.8))
+    taus = sorted(trials["tau_min"].unique())
+    for offset, label in enumerate(groups):
+        rows = trials[trials["label"] == label]
+        if rows.empty:
+            continue
+        colour = COLOURS.get(label) or plt.cm.Purples(0.35 + 0.1 * offset)
+        stats = rows.groupby("tau_min")
+        x = stats["median_delivery_min"].median()
+        y = stats["delivered"].median()
+        axes[0].errorbar(x, y, xerr=[x - stats["median_delivery_min"].quantile(0.25), stats["median_delivery_min"].quantile(0.75) - x],
+                         yerr=[y - stats["delivered"].quantile(0.25), stats["delivered"].quantile(0.75) - y],
+                         fmt="o-", color=colour, label=label, capsize=2, ms=3)
+        aborted = 100.0 * rows["aborted"] / rows["takeoffs"].where(rows["takeoffs"] > 0)
+        axes[1].boxplot([aborted[rows["tau_min"] == t].dropna() for t in taus], positions=np.arange(len(taus)) * (len(groups) + 1) + offset,
+                        widths=0.8, patch_artist=True, boxprops=dict(facecolor=colour), medianprops=dict(color="black"), flierprops=dict(ms=2))
+        backlog = frames["backlog"][frames["backlog"]["key"].isin(rows["key"])].merge(rows[["key", "tau_min"]], on="key")
+        table = backlog.groupby(["tau_min", "arrival_week"])["backlog_age_h"].mean().unstack(fill_value=0.0) / 24.0
+        bottom = np.zeros(len(table))
+        positions = np.array([taus.index(t) for t in table.index]) * (len(groups) + 1) + offset
+        for week in table.columns:
+            axes[2].bar(positions, table[week].values, bottom=bottom, color=colour, edgecolor="white", width=0.8,
+                        alpha=0.35 + 0.65 * (week + 1) / len(table.columns))
+            bottom += table[week].values
+    axes[0].set_xscale("log")
+    axes[0].xaxis.set_major_formatter(ScalarFormatter())
+    axes[0].set_xlabel("median delivery time (min)")
+    axes[0].set_ylabel("delivered parcels")
+    axes[0].legend(fontsize=7)
+    for ax, name in ((axes[1], "aborted attempts (%)"), (axes[2], "backlog age at the end (days, by arrival week)")):
+        ax.set_xticks(np.arange(len(taus)) * (len(groups) + 1) + (len(groups) - 1) / 2)
+        ax.set_xticklabels(["%g" % t for t in taus])
+        ax.set_xlabel("mean inter-arrival time (min)")
+        ax.set_ylabel(name)
+    return _save(figure, path)
+
+
+def figure17(plt, frames, path: Path, tau: float) -> Path:
+    """Mean decision accuracy per week with a 95 % confidence interval (drones x runs)."""
+    trials = _measured(frames["trials"])
+    trials = trials[(trials["tau_min"] == tau) & (trials["rule"] != "threshold")]
+    accuracy = frames["accuracy"].merge(trials[["key", "rule"]], on="key")
+    figure, ax = plt.subplots(figsize=(5, 3.5))
+    for rule, rows in accuracy.groupby("rule"):
+        stats = rows.groupby("week")["accuracy"]
+        mean, half = stats.mean(), 1.96 * stats.std(ddof=1).fillna(0.0) / np.sqrt(stats.count())
+        ax.plot(mean.index, 100 * mean, color=COLOURS[rule], label=rule)
+        ax.fill_between(mean.index, 100 * (mean - half), 100 * (mean + half), color=COLOURS[rule], alpha=0.25)
+    ax.set_xlabel("week")
+    ax.set_ylabel("decision accuracy (%)")
+    ax.set_title("tau = %g min" % tau)
+    ax.legend()
+    return _save(figure, path)
+
+
+def figure18(plt, frames, path: Path, tau: float) -> Path:
+    """Mean SoH of the drone the least-confident rule deploys, per task and SoC."""
+    trials = _measured(frames["trials"])
+    keys = trials[(trials["tau_min"] == tau) & (trials["rule"] == "least-confident")]["key"]
+    drones = frames["drones"][frames["drones"]["key"].isin(keys)]
+    maps = [winner_soh_map(rows["soh"].values, rows[["w_distance", "w_mass", "w_soc"]].values, rows["intercept"].values,
+                           MAP_SOCS, MAP_DISTANCES, MAP_MASSES)
+            for _, rows in drones.groupby("key")]
+    figure, axes = plt.subplots(2, 5, figsize=(12, 5), sharex=True, sharey=True, layout="constrained")
+    if maps:
+        with np.errstate(invalid="ignore"):
+            import warnings
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                mean = np.nanmean(np.stack(maps), axis=0)
+        for index, ax in enumerate(axes.ravel()):
+            image = ax.imshow(mean[index].T, origin="lower", aspect="auto", cmap="coolwarm", vmin=0.5, vmax=1.0,
+                              extent=(MAP_DISTANCES[0], MAP_DISTANCES[-1], MAP_MASSES[0], MAP_MASSES[-1]))
+            ax.set_title("SoC %d %%" % MAP_SOCS[index])
+            ax.set_xticks([1000, 3000, 5000])
+        figure.colorbar(image, ax=axes.ravel().tolist(), label="mean SoH of the winner")
+    for ax in axes[1]:
+        ax.set_xlabel("distance (m)")
+    for ax in axes[:, 0]:
+        ax.set_ylabel("mass (kg)")
+    figure.savefig(str(path), dpi=110, metadata={"Software": None})
+    figure.clf()
+    return path
+
+
+def figure20(plt, frames, path: Path, tau: float) -> Path:
+    """Pending orders after the run by arrival week, with and without reservations."""
+    trials = frames["trials"]
+    trials = trials[(trials["pretrain_weeks"] > 0) & (trials["tau_min"] == tau)]
+    backlog = frames["backlog"].merge(trials[["key", "forecast"]], on="key")
+    figure, ax = plt.subplots(figsize=(5, 3.5))
+    for shift, (forecast, rows) in enumerate(sorted(backlog.groupby("forecast"), key=lambda item: item[0])):
+        mean = rows.groupby("arrival_week")["pending"].mean()
+        ax.bar(mean.index + 1 + (shift - 0.5) * 0.4, mean.values, width=0.4,
+               label="with reservations" if forecast else "without", color="#66a61e" if forecast else "#a6761d")
+    ax.set_xlabel("arrival week")
+    ax.set_ylabel("pending orders at the end (mean)")
+    ax.set_title("tau = %g min, after %s weeks of learning" % (tau, ", ".join(str(w) for w in sorted(trials["pretrain_weeks"].unique()))))
+    ax.legend()
+    return _save(figure, path)
+
+
+def summary_markdown(frames) -> str:
+    """Medians per configuration as a Markdown table (the reproduction page's numbers)."""
+    table = summarise(dict(frames, trials=_measured(frames["trials"])))
+    lines = ["| rule | tau (min) | runs | delivered | pending | aborted (% of take-offs) | median delivery (min) | final accuracy (%) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for row in table.sort_values(["rule", "threshold", "tau_min"]).itertuples():
+        rule = row.rule if row.rule != "threshold" else "threshold %d %%" % round(100 * row.threshold)
+        lines.append("| %s | %g | %d | %.0f | %.0f | %.0f (%.1f %%) | %.1f | %.1f |" % (
+            rule, row.tau_min, row.runs, row.delivered, row.pending, row.aborted, row.aborted_pct,
+            row.median_delivery_min, 100 * row.final_accuracy))
+    return "\n".join(lines) + "\n"
+
+
+def draw_all(results, out, tau: float = 20.0) -> List[Path]:
+    """Every figure the results allow, into ``out``; returns the files written."""
+    frames = load(results)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    plt = _pyplot()
+    written = []
+    trials = frames["trials"]
+    if trials.empty:
+        return written
+    measured = _measured(trials)
+    labels = set(_label(measured))
+    learning = [r for r in ("least-confident", "most-confident", "random") if r in labels]
+    if learning:
+        written.append(figure16(plt, frames, out / "uav_fig16_rules.png", learning))
+        written.append(figure17(plt, frames, out / "uav_fig17_accuracy.png", tau))
+    if "least-confident" in labels:
+        written.append(figure18(plt, frames, out / "uav_fig18_soh_maps.png", tau))
+    thresholds = sorted((l for l in labels if l.startswith("threshold")), key=lambda l: abs(int(l[10:-1]) - 80))
+    if thresholds and "least-confident" in labels:       # against the best threshold of the seed, 80 %
+        written.append(figure16(plt, frames, out / "uav_fig19_threshold.png", ["least-confident", thresholds[0]]))
+    if (trials["pretrain_weeks"] > 0).any():
+        written.append(figure20(plt, frames, out / "uav_fig20_forecast.png", tau))
+    plt.close("all")
+    summary = out / "uav_summary.md"
+    summary.write_text(summary_markdown(frames))
+    written.append(summary)
+    return written

@@ -1,0 +1,44 @@
+"""`swarmvm sim|sweep|plot uav`: JSON keys, one-line errors, figures from a sweep."""
+
+import json
+
+from click.testing import CliRunner
+
+from swarmvm.cli import main
+
+QUICK = ["--weeks", "1", "--week-s", "4000", "--drones", "5", "--accuracy-samples", "20"]
+
+
+def test_sim_json_has_the_keys_the_issue_names():
+    result = CliRunner().invoke(main, ["sim", "uav", "--json", "--seed", "3", *QUICK])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    for key in ("delivered", "aborted", "pending", "median_delivery_min", "accuracy_by_week"):
+        assert key in data
+    assert len(data["accuracy_by_week"]) == 2 and data["orders"] == data["delivered"] + data["pending"]
+
+
+def test_sim_rejects_bad_values_with_one_line():
+    result = CliRunner().invoke(main, ["sim", "uav", "--drones", "0"])
+    assert result.exit_code == 2
+    assert result.output.strip() == "swarmvm: error: --drones: must be at least 1"
+
+
+def test_sweep_then_plot(tmp_path):
+    out = tmp_path / "results"
+    args = ["sweep", "uav", "-o", str(out), "--taus", "20", "--runs", "1", "--rules", "least-confident",
+            "--thresholds", "0.8", "--no-progress", *QUICK]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "2 trials run, 0 already done" in result.output
+    assert "0 trials run, 2 already done" in CliRunner().invoke(main, args).output
+    plots = CliRunner().invoke(main, ["plot", "uav", str(out), "-o", str(tmp_path / "img")])
+    assert plots.exit_code == 0, plots.output
+    names = {line.rsplit("/", 1)[-1] for line in plots.output.split()}
+    assert {"uav_fig16_rules.png", "uav_fig17_accuracy.png", "uav_fig18_soh_maps.png", "uav_fig19_threshold.png"} <= names
+    again = CliRunner().invoke(main, ["plot", "uav", str(out), "-o", str(tmp_path / "again")])
+    assert again.exit_code == 0, again.output
+    for name in names:                                   # the figures are deterministic
+        assert (tmp_path / "img" / name).read_bytes() == (tmp_path / "again" / name).read_bytes()
+    bad = CliRunner().invoke(main, ["sweep", "uav", "-o", str(out), "--rules", "fastest"])
+    assert bad.exit_code == 2 and bad.output.startswith("swarmvm: error: --rules: unknown rule 'fastest'")
