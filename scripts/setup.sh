@@ -24,8 +24,8 @@ if [ -n "$missing" ]; then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq $missing >/dev/null
 fi
 
-"$python" -c 'import sys; sys.exit(sys.version_info < (3, 10))' \
-  || { echo "setup: swarmvm needs Python 3.10 or newer; $python is $("$python" --version 2>&1)" >&2; exit 1; }
+"$python" -c 'import sys; sys.exit(sys.version_info < (3, 11))' \
+  || { echo "setup: swarmvm needs Python 3.11 or newer; $python is $("$python" --version 2>&1)" >&2; exit 1; }
 [ -x "$venv/bin/python" ] || "$python" -m venv "$venv"
 # Reinstall only when the project's metadata changed since the last install.
 stamp="$venv/.swarmvm-installed"
