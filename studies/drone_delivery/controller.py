@@ -25,15 +25,16 @@ LEARNED_PAIR = dict(yes="capableTask", no="notCapableTask")
 
 
 @lru_cache(maxsize=None)
-def generated_controller() -> ModuleType:
-    """The generated ``uav_controller`` module (with uav_learned, uav_tables beside it)."""
+def generated_app() -> ModuleType:
+    """The generated ``uav_app`` module (``make_vm``; it imports uav_controller, uav_learned and
+    uav_tables)."""
     python_vm()                                     # the runtime the generated code imports
     outdir = tempfile.mkdtemp(prefix="swarmvm-uav-")
     compiled = compile_inputs([str(SUPERVISOR)], name="uav")
     write_outputs(outdir, generate(compiled, "python", learned_checks=[LEARNED_PAIR]))
     sys.path.insert(0, outdir)
     try:
-        return importlib.import_module("uav_controller")     # imports its siblings too
+        return importlib.import_module("uav_app")     # imports its siblings too
     finally:
         sys.path.remove(outdir)
         shutil.rmtree(outdir)
@@ -41,14 +42,15 @@ def generated_controller() -> ModuleType:
 
 def linear_classifier_class():
     """swarmvm_learn.LinearClassifier as the generated code imported it."""
-    return generated_controller().learned.LinearClassifier
+    generated_app()
+    return importlib.import_module("uav_learned").LinearClassifier
 
 
 class DroneLogic:
     """One drone's VM and the world's answers to its uncontrollable events."""
 
     def __init__(self, policy, seed: int) -> None:
-        self.vm = generated_controller().make_vm(seed=seed, classifiers={"capableTask": policy})
+        self.vm = generated_app().make_vm(seed=seed, classifiers={"capableTask": policy})
         self.won = self.lost = self.turned = False
         self.vm.bind("wonBid", check=lambda _data: self.won)
         self.vm.bind("lostBid", check=lambda _data: self.lost)

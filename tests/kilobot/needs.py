@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm.runtime import FIRMWARE
+from checkout import FIRMWARE
 
 sys.path.insert(0, str(Path(FIRMWARE) / "kilobot"))
 
