@@ -29,7 +29,8 @@ PASS_NAMES = {0: "compiled in", 1: "loaded", 2: "EEPROM"}
 
 
 def swarmvm(*args):
-    return subprocess.run(["swarmvm", *map(str, args)], check=True, capture_output=True, text=True).stdout
+    """The command line of the swarmvm this Python runs (whether or not its venv is on PATH)."""
+    return subprocess.run([sys.executable, "-m", "swarmvm", *map(str, args)], check=True, capture_output=True, text=True).stdout
 
 
 def harness_passes(output):

@@ -132,9 +132,10 @@ def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str |
     compiled = compile_model(inputs, name=name)
     files = generate(compiled, target, learned_checks=learned_pairs(compiled, target, learned))
     drifts = []
+    generated = [data for data, keep in files.values() if not keep]
     for rel, (data, keep) in sorted(files.items()):
         path = Path(outdir) / rel
-        found = drift(path, data, compiled.name) if keep and path.is_file() else None
+        found = drift(path, data, compiled.name, generated) if keep and path.is_file() else None
         if found:
             drifts.append(found)
             files[rel + ".new"] = (data, False)

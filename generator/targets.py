@@ -38,13 +38,15 @@ TARGETS = {
         learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
         learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),)),
     "argos": Target(
-        "ARGoS e-puck controller (C++17): image header, CCI_Controller skeleton, CMakeLists.txt, example .argos",
+        "ARGoS e-puck controller (C++17): image header, generated CCI_Controller base class, controller skeleton, CMakeLists.txt, example .argos",
         templates=(("argos/image.hpp.j2", "{name}_image.hpp", False),
+                   ("argos/base.h.j2", "{name}_base.h", False),
                    ("argos/controller.h.j2", "{name}_controller.h", True),
                    ("argos/controller.cpp.j2", "{name}_controller.cpp", True),
                    ("argos/CMakeLists.txt.j2", "CMakeLists.txt", True),
                    ("argos/experiment.argos.j2", "{name}.argos", True)),
-        copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_report.hpp"))),
+        copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_controller.hpp",
+                                                     "swarmvm_argos_report.hpp", "swarmvm_argos.cmake"))),
     "pipuck": Target(
         "Pi-puck controller (Python): tables, the Python VM, robot adapters (real and --sim), fixed-rate app, controller skeleton",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
@@ -103,4 +105,4 @@ def copy_banner(output):
     """The first line of a runtime file copied into a target: where it comes from, and that
     ``swarmvm gen`` owns it (rewrites it on every run)."""
     text = "Copied from the swarmvm %s runtime by swarmvm gen, which rewrites it: do not edit." % __version__
-    return ("# %s\n" % text if output.endswith(".py") else "/* %s */\n" % text).encode("ascii")
+    return ("# %s\n" % text if output.endswith((".py", ".cmake")) else "/* %s */\n" % text).encode("ascii")

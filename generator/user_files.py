@@ -7,6 +7,7 @@ made both, swarmvm/naming.py) and says which are missing or stale; the fresh ske
 beside it as ``<file>.new`` to copy from."""
 
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -36,11 +37,15 @@ class Drift:
         return "%s: %s; kept as it is, a fresh skeleton is %s.new" % (self.path, "; ".join(parts), self.path)
 
 
-def drift(path: Path, fresh: bytes, model: str) -> Drift | None:
-    """The difference between the kept file at ``path`` and the ``fresh`` skeleton, if any."""
+def drift(path: Path, fresh: bytes, model: str, generated: Iterable[bytes] = ()) -> Drift | None:
+    """The difference between the kept file at ``path`` and the ``fresh`` skeleton, if any.
+    Callbacks the ``generated`` files of the same run define (such as the ARGoS base class's
+    message defaults, which a user may override) are not stale."""
     pattern = _callback_pattern(path.name, model)
     wanted = set(pattern.findall(fresh.decode("utf-8")))
+    defined = wanted.union(*(pattern.findall(data.decode("utf-8", errors="replace")) for data in generated))
     present = set(pattern.findall(path.read_text(encoding="utf-8", errors="replace")))
-    if wanted == present:
+    missing, stale = wanted - present, present - defined
+    if not missing and not stale:
         return None
-    return Drift(str(path), tuple(sorted(wanted - present)), tuple(sorted(present - wanted)))
+    return Drift(str(path), tuple(sorted(missing)), tuple(sorted(stale)))

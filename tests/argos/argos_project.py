@@ -4,6 +4,7 @@ Shared by the tests in tests/argos/ and by `make argos-demo` (firmware/argos_dem
 
 import os
 import subprocess
+import sys
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -14,6 +15,7 @@ from swarmvm.naming import fnv1a
 ARGOS_SH = ROOT / "scripts" / "argos.sh"
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
 NO_ARGOS = 3   # exit status of scripts/argos.sh: no ARGoS and no source archive
+SWARMVM = [sys.executable, "-m", "swarmvm"]   # this Python's, whether or not its venv is on PATH
 
 
 @dataclass(frozen=True)
@@ -36,7 +38,7 @@ def generate(supervisor, folder, name=None):
     """`swarmvm gen SUPERVISOR --target argos -o FOLDER [--name NAME]`."""
     supervisor = Path(supervisor)
     name = name or supervisor.stem
-    subprocess.run(["swarmvm", "gen", str(supervisor), "--target", "argos", "-o", str(folder), "--name", name],
+    subprocess.run([*SWARMVM, "gen", str(supervisor), "--target", "argos", "-o", str(folder), "--name", name],
                    check=True, capture_output=True)
     return Project(Path(folder), name, supervisor)
 
@@ -109,7 +111,7 @@ def write_script(project, steps, seed):
     """`swarmvm script` for the project's supervisor into events.txt in its folder."""
     script = project.folder / "events.txt"
     with open(script, "w") as out:
-        subprocess.run(["swarmvm", "script", str(project.supervisor), "--steps", str(steps), "--seed", str(seed)],
+        subprocess.run([*SWARMVM, "script", str(project.supervisor), "--steps", str(steps), "--seed", str(seed)],
                        stdout=out, check=True)
     return script
 
@@ -118,6 +120,6 @@ def reference_trace(project, script, seed, options, robot):
     """`swarmvm trace` of the project's supervisor for one robot (its VM seed), as lines."""
     out = project.folder / ("reference_%s.txt" % robot)
     with open(out, "w") as trace:
-        subprocess.run(["swarmvm", "trace", str(project.supervisor), "--script", str(script), "--seed", str(seed)]
+        subprocess.run([*SWARMVM, "trace", str(project.supervisor), "--script", str(script), "--seed", str(seed)]
                        + ["--%s=%s" % item for item in (options or {}).items()], stdout=trace, check=True)
     return out.read_text().splitlines()
