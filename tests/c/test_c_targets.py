@@ -106,12 +106,13 @@ def test_nadzoru_style_controller_prints_the_reference_trace(tmp_path):
     assert out.splitlines() == reference(b, Run("level", "after-inputs", "uniform", 1, 0))
 
 
-def kilobot_build(path, tmp_path):
-    """The generated Kilobot application, built by its own Makefile against the real kilolib."""
+def kilobot_build(path, tmp_path, stream=False):
+    """The generated Kilobot application, built by its own Makefile against the real kilolib
+    (with the image receiver: `make STREAM=1`)."""
     name = path.rsplit("/", 1)[-1][:-5]
     gen(path, "kilobot", tmp_path, name)
     subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
-                    name + ".elf"], cwd=tmp_path, check=True, capture_output=True, text=True)
+                    *(["STREAM=1"] if stream else []), name + ".elf"], cwd=tmp_path, check=True, capture_output=True, text=True)
     return tmp_path / (name + ".elf")
 
 
@@ -119,10 +120,11 @@ RED = 3     # RGB(3, 0, 0): the application's "image refused"
 
 
 @pytest.mark.emulator
+@pytest.mark.parametrize("stream", (False, True), ids=("flash-only", "stream"))
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])
-def test_kilobot_application_fits_and_runs(path, tmp_path):
+def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
     board_or_skip()
-    elf = kilobot_build(path, tmp_path)
+    elf = kilobot_build(path, tmp_path, stream)
     sizes = dict((k, int(v)) for k, v in re.findall(r"^\.(text|data|bss)\s+(\d+)",
                  subprocess.run(["avr-size", "-A", str(elf)], capture_output=True, text=True).stdout, re.M))
     assert sizes["text"] + sizes.get("data", 0) <= KILOBOT_FLASH
