@@ -48,5 +48,9 @@ diff -r "$work/run-editable" "$work/run-wheel" \
   || { echo "wheel-check: the wheel's output differs from the editable install's"; exit 1; }
 echo "wheel-check: every verb gives identical output from the wheel and the editable install" \
   "($(ls "$work/run-wheel/gen" | wc -l) targets generated)"
+# The wheel alone has no studies extra: the study verbs say how to get it, in one line.
+studies="$(cd "$work" && "$work/venv/bin/swarmvm" sim uav 2>&1)" && status=0 || status=$?
+[ "$status" = 2 ] && [ "$studies" = 'swarmvm: error: the studies need numpy, pandas, pyarrow, dask, tqdm, matplotlib: pip install "swarmvm[studies]"' ] \
+  || { echo "wheel-check: 'swarmvm sim uav' without the studies extra: status $status, $studies"; exit 1; }
 (cd "$work" && "$work/venv/bin/python" -m pytest -p no:cacheprovider --rootdir "$root" \
   "$root/tests/cli" "$root/tests/inputs" "$root/tests/golden" "$root/tests/pipuck" "$root/tests/python")

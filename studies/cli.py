@@ -4,6 +4,7 @@ command line). Each study adds one subcommand per group; the drone-delivery stud
 from __future__ import annotations
 
 import dataclasses
+import importlib.util
 import json
 import sys
 
@@ -57,6 +58,19 @@ def make_params(values: dict) -> Params:
         sys.exit(2)
 
 
+# What `pip install "swarmvm[studies]"` adds (pyproject.toml), by import name.
+STUDIES_EXTRA = ("numpy", "pandas", "pyarrow", "dask", "tqdm", "matplotlib")
+
+
+def need_studies_extra() -> None:
+    """Ends with one line and exit status 2 when the studies' dependencies are not installed
+    (a plain `pip install swarmvm` leaves them out), instead of an ImportError traceback."""
+    missing = [name for name in STUDIES_EXTRA if importlib.util.find_spec(name) is None]
+    if missing:
+        click.echo("swarmvm: error: the studies need %s: pip install \"swarmvm[studies]\"" % ", ".join(missing), err=True)
+        sys.exit(2)
+
+
 @click.group()
 def sim():
     """Run one trial of a study."""
@@ -79,6 +93,7 @@ def plot():
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def sim_uav(mode, as_json, **values):
     """Drone delivery (the seed's online-learning study): one trial."""
+    need_studies_extra()
     from .drone_delivery.engine import run
     result = run(make_params(values), mode=mode)
     summary = result.summary()
@@ -111,6 +126,7 @@ def _floats(text: str):
 @params_options(exclude=("rule", "threshold", "tau_min", "seed"))
 def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler, no_progress, **values):
     """Drone delivery: rules x thresholds x tau x runs; finished trials are not rerun."""
+    need_studies_extra()
     from .drone_delivery import sweep as grid_sweep
     rule_list = [r for r in rules.split(",") if r.strip()]
     bad = [r for r in rule_list if r not in grid_sweep.LEARNING_RULES]
@@ -129,6 +145,7 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
 @click.option("--tau", default=20.0, show_default=True, help="Inter-arrival mean of Figures 17, 18 and 20.")
 def plot_uav(results, out, tau):
     """Drone delivery: the seed's Figures 16-20 (and a summary table) from sweep results."""
+    need_studies_extra()
     from .drone_delivery import plots
     for path in plots.draw_all(results, out, tau=tau):
         click.echo(path)

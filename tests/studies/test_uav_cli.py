@@ -42,3 +42,13 @@ def test_sweep_then_plot(tmp_path):
         assert (tmp_path / "img" / name).read_bytes() == (tmp_path / "again" / name).read_bytes()
     bad = CliRunner().invoke(main, ["sweep", "uav", "-o", str(out), "--rules", "fastest"])
     assert bad.exit_code == 2 and bad.output.startswith("swarmvm: error: --rules: unknown rule 'fastest'")
+
+
+def test_without_the_studies_extra_each_verb_says_how_to_get_it(monkeypatch):
+    import importlib.util
+    find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "pandas" else find_spec(name, *a))
+    for verb in (["sim", "uav"], ["sweep", "uav", "-o", "x"], ["plot", "uav", ".", "-o", "x"]):
+        result = CliRunner().invoke(main, verb)
+        assert result.exit_code == 2, verb
+        assert result.output == 'swarmvm: error: the studies need pandas: pip install "swarmvm[studies]"\n', verb
