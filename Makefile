@@ -46,6 +46,7 @@ demo: setup
 
 bench: setup
 	$(PYTHON) benchmarks/python_vm.py
+	$(PYTHON) benchmarks/python_vs_baseline.py --json $(BUILD)/bench/python_vs_baseline.json
 
 clean:
 	rm -rf $(BUILD)

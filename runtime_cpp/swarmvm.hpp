@@ -51,13 +51,14 @@ constexpr std::uint32_t kQ15One = 32768;
 constexpr std::uint32_t kZeroSeed = 0x9E3779B9u;
 
 // CRC-16/MCRF4XX (reflected polynomial 0x8408, initial 0xFFFF, no final xor): what the
-// Kilobot's avr-libc computes with _crc_ccitt_update, so every runtime checks the same sum.
+// Kilobot's avr-libc computes with _crc_ccitt_update, so every runtime checks the same sum. A
+// byte at a time, branch-free (the byte-wise form of the polynomial, as swarmvm.c computes it).
 inline std::uint16_t crc16(const std::uint8_t* data, std::size_t size, std::uint16_t crc = 0xFFFF) {
     for (std::size_t i = 0; i < size; ++i) {
-        crc = static_cast<std::uint16_t>(crc ^ data[i]);
-        for (int bit = 0; bit < 8; ++bit) {
-            crc = (crc & 1u) ? static_cast<std::uint16_t>((crc >> 1) ^ 0x8408u) : static_cast<std::uint16_t>(crc >> 1);
-        }
+        auto d = static_cast<std::uint8_t>(data[i] ^ static_cast<std::uint8_t>(crc));
+        d = static_cast<std::uint8_t>(d ^ static_cast<std::uint8_t>(d << 4));
+        crc = static_cast<std::uint16_t>(((static_cast<unsigned>(d) << 8) | (crc >> 8)) ^ (d >> 4) ^
+                                         (static_cast<unsigned>(d) << 3));
     }
     return crc;
 }

@@ -58,14 +58,13 @@ class XorShift32:
 
 
 def _bits(mask):
-    """Indices of the set bits of ``mask``, lowest first (canonical event order)."""
+    """Indices of the set bits of ``mask``, lowest first (canonical event order): one pass per
+    set bit, not per bit."""
     out = []
-    index = 0
     while mask:
-        if mask & 1:
-            out.append(index)
-        mask >>= 1
-        index += 1
+        low = mask & -mask
+        out.append(low.bit_length() - 1)
+        mask ^= low
     return out
 
 
