@@ -119,6 +119,12 @@ class VM:
             self.weights.append(weights)
         self.event_sups = [[s for s in range(image.num_supervisors) if image.sup_alphabet[s] >> e & 1]
                            for e in range(image.num_events)]
+        # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
+        # each of its states on the event, None where undefined): one list index per move.
+        self.successors = [[(sup, [moves.get(e) for moves in self.moves[sup]]) for sup in self.event_sups[e]]
+                           for e in range(image.num_events)]
+        self._polls = None
+        self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
         self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
@@ -168,6 +174,7 @@ class VM:
             self.checks[index] = check
         self.data[index] = data
         self._bindings_checked = False
+        self._polls = None
 
     def bind_controller(self, controller):
         """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
@@ -194,22 +201,26 @@ class VM:
         self.violations = 0
         self.rng = XorShift32(self.seed)
 
+    def _enabled_mask(self):
+        mask = self.image.controllable
+        for allowed, state in zip(self.allowed, self.states):
+            mask &= allowed[state]
+        return mask
+
     def enabled(self):
         """Controllable events enabled by every supervisor, in canonical order."""
-        mask = self.image.controllable
-        for sup, state in enumerate(self.states):
-            mask &= self.allowed[sup][state]
-        return _bits(mask)
+        return _bits(self._enabled_mask())
 
     def _apply(self, event):
-        for sup in self.event_sups[event]:
-            target = self.moves[sup][self.states[sup]].get(event)
+        states = self.states
+        for sup, successor in self.successors[event]:
+            target = successor[states[sup]]
             if target is None:
                 self.violations += 1
                 if self.on_violation is not None:
                     self.on_violation(event, sup)
             else:
-                self.states[sup] = target
+                states[sup] = target
         action = self.actions.get(event)
         if action is not None:
             action(self.data.get(event))
@@ -248,20 +259,25 @@ class VM:
             if self.unbound_checks():
                 raise UnboundEvents(self.unbound_checks())
             self._bindings_checked = True
-        current = 0
-        for event in self.input_order:
-            check = self.checks.get(event)
-            if check is not None and check(self.data.get(event)):
-                current |= 1 << event
-        occurred = current & ~self.previous if self.inputs == "edge" else current
-        self.previous = current
-        fired = [event for event in self.input_order if occurred >> event & 1]
+        polls = self._polls
+        if polls is None:
+            polls = self._polls = [(e, self.checks[e], self.data.get(e)) for e in self.input_order if e in self.checks]
+        if self.inputs == "level":
+            fired = [event for event, check, data in polls if check(data)]
+        else:
+            true = [event for event, check, data in polls if check(data)]
+            previous, current = self.previous, sum(1 << event for event in true)
+            fired = [event for event in true if not previous >> event & 1]
+            self.previous = current
         for event in fired:
             self._apply(event)
         if fired and self.control == "if-quiet":
             return fired
-        enabled = self.enabled()
-        if enabled:
+        mask = self._enabled_mask()
+        if mask:
+            enabled = self._enabled_sets.get(mask)
+            if enabled is None:     # a set of enabled events met for the first time
+                enabled = self._enabled_sets[mask] = tuple(_bits(mask))
             choice = self.select(enabled)
             self._apply(choice)
             fired.append(choice)

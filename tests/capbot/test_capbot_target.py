@@ -12,16 +12,14 @@ import subprocess
 import pytest
 
 from conformance import qemu_harness
+from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS
-from swarmvm.runtime import python_vm
 from checkout import ROOT
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
-APP_STEPS = 20          # firmware/capbot/app_qemu.c: SVM_APP_STEPS
-ENV_SEED = 2024         # firmware/capbot/app_qemu.c: ENV_SEED
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
                   "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
@@ -94,14 +92,6 @@ def test_every_source_compiles_without_warning(app, compiler, tmp_path):
         subprocess.run([compiler, *WARNINGS, *cpu, "-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=4",
                         "-I", str(qemu_harness.CAPBOT), "-I", str(app / "src"), "-c", str(source),
                         "-o", str(tmp_path / (source.stem + ".o"))], check=True)
-
-
-def environment_script(image):
-    """The events app_qemu.c makes occur: per step, each uncontrollable event in event order
-    with probability 1/4 from xorshift32 seeded with ENV_SEED."""
-    rng = python_vm().XorShift32(ENV_SEED)
-    uncontrollable = [e for e in range(image.num_events) if not image.controllable >> e & 1]
-    return [frozenset(e for e in uncontrollable if rng.below(4) == 0) for _ in range(APP_STEPS)]
 
 
 def build_with_make(build, name):

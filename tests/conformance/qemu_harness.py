@@ -5,6 +5,7 @@ The batch header, the compile-time limits and the output parser are the common o
 linker script, semihosting platform, flags in ``m4.flags``) and the QEMU run."""
 
 import subprocess
+import tempfile
 from pathlib import Path
 
 from conformance import c_harness
@@ -38,8 +39,20 @@ def build_qemu(batch, outdir, cycles=False):
     return compile_m4(sources, outdir / ("harness_%s.elf" % batch.name), defines, includes)
 
 
+def run(elf, extra=(), icount=False, timeout=QEMU_TIMEOUT):
+    """(exit status, stdout, stderr) of one QEMU run of a bare-metal ELF, ``extra`` options added.
+
+    QEMU's output goes to files, not pipes: semihosting writes to a pipe that is full on a busy
+    machine fail with EAGAIN and the output is lost."""
+    command = ["timeout", str(timeout), *QEMU, *(ICOUNT if icount else []), "-kernel", str(elf), *extra]
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        status = subprocess.run(command, stdout=out, stderr=err, stdin=subprocess.DEVNULL).returncode
+        out.seek(0)
+        err.seek(0)
+        return status, out.read(), err.read()
+
+
 def run_qemu(elf, icount=False, timeout=QEMU_TIMEOUT):
     """(exit status, stdout) of one QEMU run of a bare-metal ELF."""
-    command = QEMU + (ICOUNT if icount else []) + ["-kernel", str(elf)]
-    proc = subprocess.run(["timeout", str(timeout)] + command, capture_output=True, text=True)
-    return proc.returncode, proc.stdout
+    status, stdout, _ = run(elf, icount=icount, timeout=timeout)
+    return status, stdout

@@ -17,6 +17,7 @@ import pytest
 
 from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
+from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS, batch
 from swarmvm.runtime import image_format, python_vm
 from checkout import ROOT
@@ -70,12 +71,11 @@ def run_page(elf, tmp_path, b, page=None, page_file=None):
         loaders += ["-device", "loader,file=%s,addr=0x%x,force-raw=on" % (page_file, PAGE)]
     elif page_file is not None:
         loaders += ["-device", "loader,file=%s" % page_file]
-    proc = subprocess.run(["timeout", str(qemu_harness.QEMU_TIMEOUT), *qemu_harness.QEMU, "-kernel", str(elf),
-                           *loaders], capture_output=True, text=True)
-    first, _, rest = proc.stdout.partition("\n")
-    assert first.startswith("@page "), proc.stdout[:200]
+    status, stdout, _ = qemu_harness.run(elf, loaders)
+    first, _, rest = stdout.partition("\n")
+    assert first.startswith("@page "), stdout[:200]
     traces, info = c_harness.parse(rest)
-    return proc.returncode, int(first.split()[1]), traces, info
+    return status, int(first.split()[1]), traces, info
 
 
 def with_crc(image):
@@ -148,14 +148,12 @@ def test_logic_hex_rule_writes_the_page(elf, tmp_path, made):
 def test_application_runs_the_page_or_its_compiled_in_logic(made, with_page):
     """logic-vm.elf (energy_worker's application, page limits) runs uav from the page, with the
     environment app_qemu.c plays; with an empty page it says why and runs energy_worker."""
-    from test_capbot_target import environment_script
     vm_elf, hex_file = made
     model = "uav" if with_page else "energy_worker"
     image = vm.Image.parse(batch(next(p for p in SUPERVISORS if p.endswith("/%s.yaml" % model))).image)
     loader = ["-device", "loader,file=%s" % hex_file] if with_page else []
-    proc = subprocess.run(["timeout", "30", *qemu_harness.QEMU, "-kernel", str(vm_elf), *loader],
-                          capture_output=True, text=True)
-    assert proc.returncode == 0
-    assert proc.stdout.splitlines() == vm.replay(vm.VM(image), environment_script(image))
-    assert proc.stderr == ("logic page: running its image\n" if with_page else
+    status, stdout, stderr = qemu_harness.run(vm_elf, loader, timeout=30)
+    assert status == 0
+    assert stdout.splitlines() == vm.replay(vm.VM(image), environment_script(image))
+    assert stderr == ("logic page: running its image\n" if with_page else
                            "logic page: refused (swarmvm error 1), running the compiled-in energy_worker\n")
