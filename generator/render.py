@@ -11,6 +11,7 @@ from pathlib import Path
 import jinja2
 
 from . import __version__
+from .errors import InputError
 from .image import FORMAT, digest
 from .naming import callback_stem, event_names
 from .runtime import TEMPLATES
@@ -68,19 +69,43 @@ def render(template, values):
 
 
 def write_outputs(outdir, files):
-    """``files``: {relative path: (bytes, keep)}. Returns the paths written, sorted."""
+    """``files``: {relative path: (bytes, keep)}. Returns the paths written, sorted.
+
+    All or nothing: every file is first written to a temporary file beside its destination,
+    and only when all of them are written are they renamed into place, so a failure (an
+    unwritable folder, a destination that is a folder, a full disk) leaves no partial output
+    and no temporary file. A folder or file that cannot be made is an InputError naming it."""
     outdir = Path(outdir)
-    written = []
-    for rel in sorted(files):
-        data, keep = files[rel]
-        path = outdir / rel
-        if keep and path.exists():
-            continue
-        path.parent.mkdir(parents=True, exist_ok=True)
-        handle, temp = tempfile.mkstemp(dir=str(path.parent), prefix=".swarmvm-")
+    staged = []
+    try:
+        for rel in sorted(files):
+            data, keep = files[rel]
+            path = outdir / rel
+            if keep and path.exists():
+                continue
+            if path.is_dir():
+                raise InputError(str(path), "-o", "is a folder, not a file that can be written")
+            staged.append((_stage(path, data), path))
+        for temp, path in staged:
+            os.replace(temp, path)
+    except OSError as exc:
+        raise InputError(str(exc.filename or outdir), "-o", "cannot write (%s)" % exc.strerror)
+    finally:
+        for temp, _ in staged:
+            if os.path.exists(temp):
+                os.unlink(temp)
+    return [str(path) for _, path in staged]
+
+
+def _stage(path, data):
+    """``data`` in a new temporary file in ``path``'s folder (made if missing); its name."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temp = tempfile.mkstemp(dir=str(path.parent), prefix=".swarmvm-")
+    try:
         with os.fdopen(handle, "wb") as out:
             out.write(data)
         os.chmod(temp, 0o644)
-        os.replace(temp, path)
-        written.append(str(path))
-    return written
+    except OSError:
+        os.unlink(temp)
+        raise
+    return temp

@@ -1,0 +1,52 @@
+"""Where the output cannot be written: one line naming the path and `-o`, exit status 2, and
+nothing written (no partial output, no temporary file left behind)."""
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from swarmvm.cli import main
+
+EXAMPLE = str(Path(__file__).resolve().parents[2] / "examples" / "energy_worker" / "supervisor.yaml")
+
+
+def run(*args):
+    result = CliRunner().invoke(main, list(args))
+    return result.exit_code, result.output
+
+
+def every_file(folder):
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
+
+
+def test_gen_into_a_file_is_one_line(tmp_path):
+    blocker = tmp_path / "out"
+    blocker.write_text("mine")
+    status, output = run("gen", EXAMPLE, "--target", "c", "-o", str(blocker))
+    assert status == 2 and output == "swarmvm: error: %s: -o: cannot write (File exists)\n" % blocker
+    assert blocker.read_text() == "mine"
+
+
+def test_gen_where_no_folder_can_be_made_is_one_line():
+    status, output = run("gen", EXAMPLE, "--target", "c", "-o", "/proc/swarmvm-cannot-be-here")
+    assert status == 2 and output.count("\n") == 1 and ": -o: cannot write (" in output
+
+
+def test_pack_onto_a_folder_is_one_line(tmp_path):
+    status, output = run("pack", EXAMPLE, "-o", str(tmp_path))
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a folder, not a file that can be written\n" % tmp_path
+
+
+@pytest.mark.parametrize("target", ["c", "argos", "python"])
+def test_a_failing_gen_writes_nothing(target, tmp_path):
+    """One destination is a folder: the other files are not written either, and no temporary
+    file stays behind."""
+    out = tmp_path / "out"
+    (out / "swarmvm_sub").mkdir(parents=True)
+    blocked = {"c": "Makefile", "argos": "swarmvm.hpp", "python": "swarmvm_vm.py"}[target]
+    (out / blocked).mkdir()
+    status, output = run("gen", EXAMPLE, "--target", target, "-o", str(out))
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a folder, not a file that can be written\n" % (
+        out / blocked)
+    assert every_file(out) == sorted(["swarmvm_sub", blocked])
