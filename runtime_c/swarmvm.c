@@ -859,7 +859,7 @@ static SVM_INLINE uint16_t successor(uint8_t src, const uint8_t *st, uint8_t m, 
 
 static void violation(svm_vm_t *vm, uint8_t event, uint8_t s)
 {
-    if (vm->violations != 0xFFFFu) {
+    if (vm->violations != SVM_MAX_VIOLATIONS) {
         vm->violations++;
     }
     if (vm->on_violation != 0) {
@@ -1198,7 +1198,7 @@ uint16_t svm_num_states(const svm_vm_t *vm)
     return vm->image == 0 ? 0u : RD16(vm, SVM_AT_NUM_STATES);
 }
 
-uint16_t svm_violations(const svm_vm_t *vm)
+uint32_t svm_violations(const svm_vm_t *vm)
 {
     return vm->violations;
 }

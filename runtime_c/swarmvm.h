@@ -65,6 +65,9 @@
 /* Bytes of an event mask able to hold SVM_MAX_EVENTS events. */
 #define SVM_MASK_BYTES ((SVM_MAX_EVENTS + 7) / 8)
 
+/* The violation counter stops here on every runtime (docs/semantics.md). */
+#define SVM_MAX_VIOLATIONS 0xFFFFFFFFUL
+
 /* A supervisor's current state, as a global state number (index of its record). */
 #if SVM_MAX_STATES < 1 || SVM_MAX_STATES > 65535
 #error "SVM_MAX_STATES must be 1..65535 (the image format's limit)"
@@ -185,7 +188,7 @@ typedef struct svm_vm {
     uint8_t source;             /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
                                    (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte */
     uint8_t options;            /* SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_* */
-    uint16_t violations;        /* saturates at 65535 */
+    uint32_t violations;        /* saturates at SVM_MAX_VIOLATIONS */
     svm_state_t state[SVM_MAX_SUPERVISORS];   /* global state numbers */
     uint8_t previous[SVM_MASK_BYTES];   /* check values of the previous step (edge mode) */
     uint32_t rng;
@@ -284,7 +287,7 @@ uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_num_states(const svm_vm_t *vm);
-uint16_t svm_violations(const svm_vm_t *vm);
+uint32_t svm_violations(const svm_vm_t *vm);
 uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event);
 uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event);
 

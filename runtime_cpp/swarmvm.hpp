@@ -49,6 +49,8 @@ constexpr std::uint8_t kFlagProbs = 0x02;
 constexpr std::uint8_t kKnownFlags = 0x03;       // an image with any other flag bit is refused
 constexpr std::uint32_t kQ15One = 32768;
 constexpr std::uint32_t kZeroSeed = 0x9E3779B9u;
+// The violation counter stops here on every runtime (docs/semantics.md).
+constexpr std::uint32_t kMaxViolations = 0xFFFFFFFFu;
 
 // CRC-16/MCRF4XX (reflected polynomial 0x8408, initial 0xFFFF, no final xor): what the
 // Kilobot's avr-libc computes with _crc_ccitt_update, so every runtime checks the same sum. A
@@ -693,7 +695,7 @@ private:
         for (unsigned s : derived_.event_sups[event]) {
             const long slot = successor_slot(s, event);
             if (slot < 0) {
-                ++violations_;
+                if (violations_ != kMaxViolations) ++violations_;
                 if (on_violation_) on_violation_(event, s);
             } else {
                 states_[s] = image_.targets[static_cast<std::size_t>(slot)];

@@ -17,6 +17,7 @@ from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
+MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
 
 
 def callback_stem(name):
@@ -216,7 +217,8 @@ class VM:
         for sup, successor in self.successors[event]:
             target = successor[states[sup]]
             if target is None:
-                self.violations += 1
+                if self.violations != MAX_VIOLATIONS:
+                    self.violations += 1
                 if self.on_violation is not None:
                     self.on_violation(event, sup)
             else:

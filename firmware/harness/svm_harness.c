@@ -84,7 +84,7 @@ static void put_result(const char *tag, int result)
     svm_harness_putc('\n');
 }
 
-static void put_trace_line(uint16_t step)
+static void put_trace_line(uint32_t step)
 {
     svm_put_trace_line(svm_harness_putc, &vm, step, fired, num_fired);
 }
@@ -97,7 +97,8 @@ static uint32_t flash_u32(const uint8_t *p)
 
 static void run_all(uint8_t pass)
 {
-    uint16_t run, step;
+    uint16_t run;
+    uint32_t step;
     uint8_t i;
     for (run = 0; run < SVM_CASES_RUNS; run++) {
         const uint8_t *spec = svm_case_runs + 6u * run;
@@ -121,13 +122,13 @@ static void run_all(uint8_t pass)
                 svm_harness_timer_start();
                 (void)svm_step(&vm);
                 cycles = svm_harness_timer_stop();
-                put_trace_line((uint16_t)(step + 1u));
+                put_trace_line(step + 1u);
                 put_str(" ~");
                 put_uint(cycles);
             }
 #else
             (void)svm_step(&vm);
-            put_trace_line((uint16_t)(step + 1u));
+            put_trace_line(step + 1u);
 #endif
             svm_harness_putc('\n');
         }
