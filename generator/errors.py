@@ -19,6 +19,15 @@ class InputError(Exception):
         return ": ".join(part for part in parts if part)
 
 
+def ascii_int(text, digits=9):
+    """``text`` as a non-negative integer when it is 1 to ``digits`` ASCII digits, else None.
+    The bound comes before ``int()``, which accepts other scripts' digits ('²' passes
+    ``isdigit`` and fails ``int``) and refuses strings of over 4,300 digits with a ValueError."""
+    if not 0 < len(text) <= digits or not (text.isascii() and text.isdigit()):
+        return None
+    return int(text)
+
+
 def read_input(path):
     """The bytes of an input file, refusing one that cannot be read or is over MAX_BYTES. At most
     MAX_BYTES + 1 bytes are read: a device or pipe (``/dev/zero``) has no size to check first."""

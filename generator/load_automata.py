@@ -9,8 +9,9 @@ import os
 from fractions import Fraction
 
 from .automaton import AutomatonBuilder, read_fsa_xml
-from .errors import InputError
+from .errors import InputError, ascii_int
 from .load_supervisor import NAME
+from .load_supervisor import probability as parse_probability
 from .model import Supervisors
 from .read_gen import load_gen
 from .read_nza import load_nza
@@ -32,9 +33,11 @@ def _flag(path, element, attribute, where, default=None):
 
 def _int_attr(path, element, attribute, where):
     value = element.get(attribute, "")
-    if not value.isdigit():
-        raise InputError(path, attribute, "expected a non-negative integer id, got %r" % value, where)
-    return int(value)
+    number = ascii_int(value)
+    if number is None:
+        raise InputError(path, attribute, "expected a non-negative integer id of at most 9 digits, got %r" % value[:40],
+                         where)
+    return number
 
 
 def load_automaton(path):
@@ -57,14 +60,11 @@ def load_automaton(path):
         target = _int_attr(path, element, "target", "transition")
         eid = _int_attr(path, element, "event", "transition")
         probability = None
-        if element.get("probability") is not None:
-            try:
-                probability = Fraction(element.get("probability", ""))
-            except ValueError:
-                probability = None
-            if probability is None or not 0 <= probability <= 1:
-                raise InputError(path, "probability", "%r is not a probability in [0, 1]" % element.get("probability"),
-                                 "state %d" % source)
+        text = element.get("probability")
+        if text is not None:
+            probability = parse_probability(text)
+            if probability is None:
+                raise InputError(path, "probability", "%r is not a probability in [0, 1]" % text[:40], "state %d" % source)
         build.transition(source, eid, target, probability)
     return build.build(size)
 

@@ -12,7 +12,7 @@ from fractions import Fraction
 
 import yaml
 
-from .errors import InputError, read_input
+from .errors import InputError, ascii_int, read_input
 from .model import LocalSupervisor, Supervisors, Transition
 
 REQUIRED = ("num_events", "num_supervisors", "events", "ev_controllable", "sup_events",
@@ -20,6 +20,20 @@ REQUIRED = ("num_events", "num_supervisors", "events", "ev_controllable", "sup_e
 OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", "sup_data_prob")
 NAME = re.compile(r"[A-Za-z0-9_]*\Z")
 INTEGER = re.compile(r"[0-9]+\Z")
+# A probability as the tools write it: a decimal (an exponent of at most two digits) or a ratio.
+PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
+
+
+def probability(text):
+    """``text`` as an exact probability in [0, 1], else None. The form is checked first:
+    ``Fraction`` takes '1e-100000000' (minutes of arithmetic) and '1/0' (ZeroDivisionError)."""
+    if not isinstance(text, str) or not PROBABILITY.match(text.strip()):
+        return None
+    try:
+        value = Fraction(text.strip())
+    except ZeroDivisionError:
+        return None
+    return value if 0 <= value <= 1 else None
 
 
 def bare_name(raw):
@@ -39,7 +53,9 @@ class _Reader:
     def int(self, value, key, where="", low=0, high=None):
         if not isinstance(value, str) or not INTEGER.match(value):
             self.fail(key, "expected a non-negative integer, got %s" % _show(value), where)
-        number = int(value)
+        number = ascii_int(value.lstrip("0") or "0")
+        if number is None:
+            self.fail(key, "value of %d digits out of range" % len(value), where)
         if number < low or (high is not None and number > high):
             bound = "at least %d" % low if high is None else "in %d..%d" % (low, high)
             self.fail(key, "value %d out of range (must be %s)" % (number, bound), where)
@@ -79,6 +95,8 @@ def load_supervisor(path):
         raise InputError(name, "", "not UTF-8 text (byte %d)" % exc.start)
     try:
         doc = yaml.load(text, Loader=yaml.BaseLoader)
+    except RecursionError:
+        raise InputError(name, "", "not a supervisor: lists or mappings nested too deeply")
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = " at line %d" % (mark.line + 1) if mark is not None else ""
@@ -232,11 +250,8 @@ def _parse_probabilities(r, supervisors, controllable, index, n_sups):
                 at = "%s, event EV_%s" % (where, t.event)
                 if p >= end:
                     r.fail("sup_data_prob", "block ends inside a state's probabilities", at)
-                try:
-                    value = Fraction(data[p]) if isinstance(data[p], str) else None
-                except ValueError:
-                    value = None
-                if value is None or not 0 <= value <= 1:
+                value = probability(data[p])
+                if value is None:
                     r.fail("sup_data_prob[%d]" % p, "%s is not a probability in [0, 1]" % _show(data[p]), at)
                 t.probability = value
             pos += 1 + count

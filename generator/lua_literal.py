@@ -41,7 +41,7 @@ def _unescape(body: str, line: int) -> str:
             i += 1
             continue
         nxt = body[i + 1]
-        if nxt.isdigit():
+        if "0" <= nxt <= "9":
             found = re.match(r"[0-9]{1,3}", body[i + 1:])
             digits = found.group() if found else nxt
             if int(digits) > 255:

@@ -33,7 +33,7 @@ def expand_directories(paths):
         found = [os.path.join(path, f) for f in os.listdir(path) if os.path.splitext(f)[1].lower() in SUFFIXES]
         if not found:
             raise InputError(path, "", "directory holds no automata (%s)" % ", ".join(SUFFIXES))
-        out.extend(sorted(found, key=lambda f: [int(p) if p.isdigit() else p for p in re.split(r"(\d+)", f)]))
+        out.extend(sorted(found, key=lambda f: [int(p) if p.isdecimal() else p for p in re.split(r"(\d+)", f)]))
     return out
 
 

@@ -18,7 +18,7 @@ import re
 from typing import List, Tuple
 
 from .automaton import AutomatonBuilder, AutomatonFile
-from .errors import InputError, read_input
+from .errors import InputError, ascii_int, read_input
 
 TOKEN = re.compile(r"""
     (?P<space>\s+|%[^\n]*)
@@ -28,6 +28,7 @@ TOKEN = re.compile(r"""
   | (?P<word>[^\s<>"%+]+)
 """, re.VERBOSE)
 SECTIONS = ("Alphabet", "States", "TransRel", "InitStates", "MarkedStates")
+MAX_CONSECUTIVE = 0x10000     # more states than any image can hold
 PUBLIC = re.compile(r"^[ \t]*% swarmvm public:(.*)$", re.MULTILINE)
 
 
@@ -84,10 +85,13 @@ def _names(path, section, tokens):
     while i < len(tokens):
         kind, value, line = tokens[i]
         if value == "<Consecutive>":
-            if i + 3 >= len(tokens) or tokens[i + 3][1] != "</Consecutive>" or not (
-                    tokens[i + 1][1].isdigit() and tokens[i + 2][1].isdigit()):
+            first, last = (ascii_int(tokens[i + k][1]) if i + k < len(tokens) else None for k in (1, 2))
+            if i + 3 >= len(tokens) or tokens[i + 3][1] != "</Consecutive>" or first is None or last is None:
                 raise InputError(path, section, "expected <Consecutive> first last </Consecutive>", "line %d" % line)
-            out.extend(str(n) for n in range(int(tokens[i + 1][1]), int(tokens[i + 2][1]) + 1))
+            if last - first >= MAX_CONSECUTIVE:
+                raise InputError(path, section, "<Consecutive> %d %d: over %d states" % (first, last, MAX_CONSECUTIVE),
+                                 "line %d" % line)
+            out.extend(str(n) for n in range(first, last + 1))
             i += 4
         elif kind == "word":
             out.append(value)

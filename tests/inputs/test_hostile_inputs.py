@@ -1,0 +1,44 @@
+"""Hostile and unusual input (issue 12's observed defects): each gives one line naming the file
+and key, exit status 2 and nothing written, at once (no traceback, no hang)."""
+
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from swarmvm.cli import main
+
+CORPUS = Path(__file__).resolve().parents[1] / "corpus"
+WORKER = (CORPUS / "openswarm" / "energy_worker.yaml").read_text()
+PROBABILISTIC = (CORPUS / "nadzoru2" / "probabilistic_example.yaml").read_text()
+XML_PLANT = next(CORPUS.glob("synthesis/energy_worker/*.xml")).read_text()
+
+
+def with_probability(text):
+    return PROBABILISTIC.replace("0.70000000", text, 1)
+
+
+CASES = {
+    "deep_nesting.yaml": ("a: " + "[" * 50000 + "]" * 50000 + "\n",
+                          "not a supervisor: lists or mappings nested too deeply"),
+    "huge_integer.yaml": (WORKER.replace("num_supervisors: ", "num_supervisors: " + "9" * 5000 + "\nold_count: ", 1),
+                          "num_supervisors: value of 5000 digits out of range"),
+    "probability_over_zero.yaml": (with_probability("1/0"), "is not a probability in [0, 1]"),
+    "probability_tiny_exponent.yaml": (with_probability("1e-100000000"), "is not a probability in [0, 1]"),
+    "superscript_id.xml": (re.sub(r'source="(\d+)"', 'source="²"', XML_PLANT, count=1),
+                           "source: transition: expected a non-negative integer id of at most 9 digits, got '²'"),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_hostile_input_is_one_line(name, tmp_path):
+    text, message = CASES[name]
+    path = tmp_path / name
+    path.write_text(text)
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["gen", str(path), "--target", "c", "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: %s: " % path)
+    assert message in result.stderr
+    assert not out.exists()
