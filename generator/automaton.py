@@ -15,7 +15,7 @@ from defusedxml import DefusedXmlException
 from xml.etree.ElementTree import Element, ParseError
 
 from .errors import InputError, read_input
-from .load_supervisor import NAME
+from .load_supervisor import NAME, show_value
 from .model import LocalSupervisor, Transition
 
 
@@ -59,7 +59,8 @@ class AutomatonBuilder:
 
     def event(self, eid: Hashable, name: str, controllable: bool, public: bool = False, key: str = "event"):
         if not isinstance(name, str) or not NAME.match(name):
-            self.fail(key, "%r is not an event name (letters, digits and '_')" % (name,), "event %s" % eid)
+            self.fail(key, "%s is not an event name (at most 255 letters, digits and '_')"
+                      % (ascii(name[:60]) if isinstance(name, str) else show_value(name)), "event %s" % eid)
         if name in self._flags:
             self.fail(key, "duplicate event name", "event EV_%s" % name)
         if eid in self._events:

@@ -16,7 +16,9 @@ FORMAT = runtime.image_format()
 
 def pack(tables, source, names=True):
     """The image bytes; InputError when the model is too large for the format."""
-    limits = [("states", tables.num_states, FORMAT.MAX_STATES),
+    limits = [("events", tables.num_events, FORMAT.MAX_EVENTS),
+              ("supervisors", tables.num_supervisors, FORMAT.MAX_SUPERVISORS),
+              ("states", tables.num_states, FORMAT.MAX_STATES),
               ("transitions", tables.num_transitions, FORMAT.MAX_TRANSITIONS)]
     for what, count, limit in limits:
         if count > limit:

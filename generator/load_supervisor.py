@@ -14,11 +14,14 @@ import yaml
 
 from .errors import InputError, ascii_int, read_input
 from .model import LocalSupervisor, Supervisors, Transition
+from .runtime import image_format
 
 REQUIRED = ("num_events", "num_supervisors", "events", "ev_controllable", "sup_events",
             "sup_init_state", "sup_data_pos", "sup_data")
 OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", "sup_data_prob")
-NAME = re.compile(r"[A-Za-z0-9_]*\Z")
+# An event name: the image format's name bytes (swarmvm_format.NAME_CHARS), at most its
+# MAX_NAME_LENGTH (255) of them.
+NAME = re.compile(r"[A-Za-z0-9_]{0,%d}\Z" % image_format().MAX_NAME_LENGTH)
 INTEGER = re.compile(r"[0-9]+\Z")
 # A probability as the tools write it: a decimal (an exponent of at most two digits) or a ratio.
 PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
@@ -52,7 +55,7 @@ class _Reader:
 
     def int(self, value, key, where="", low=0, high=None):
         if not isinstance(value, str) or not INTEGER.match(value):
-            self.fail(key, "expected a non-negative integer, got %s" % _show(value), where)
+            self.fail(key, "expected a non-negative integer, got %s" % show_value(value), where)
         number = ascii_int(value.lstrip("0") or "0")
         if number is None:
             self.fail(key, "value of %d digits out of range" % len(value), where)
@@ -64,7 +67,7 @@ class _Reader:
     def list(self, key, length=None, what=""):
         value = self.doc[key]
         if not isinstance(value, list):
-            self.fail(key, "expected a list, got %s" % _show(value))
+            self.fail(key, "expected a list, got %s" % show_value(value))
         if length is not None and len(value) != length:
             self.fail(key, "has %d entries, %s says %d" % (len(value), what, length))
         return value
@@ -74,14 +77,18 @@ class _Reader:
         out = []
         for i, value in enumerate(values):
             if value not in ("0", "1"):
-                self.fail("%s[%d]" % (key, i), "value %s is not 0 or 1" % _show(value), "event EV_%s" % names[i])
+                self.fail("%s[%d]" % (key, i), "value %s is not 0 or 1" % show_value(value), "event EV_%s" % names[i])
             out.append(value == "1")
         return out
 
 
-def _show(value):
+def show_value(value):
+    """A value for a one-line message: quoted and escaped when empty, holding white space or
+    unprintable or non-ASCII characters; cut at 60 characters."""
     if isinstance(value, str):
-        return repr(value) if value == "" else value
+        plain = value and value.isascii() and value.isprintable() and not any(c.isspace() for c in value)
+        shown = value if plain else ascii(value)
+        return shown if len(shown) <= 60 else shown[:57] + "..."
     return "a list" if isinstance(value, list) else "a mapping" if isinstance(value, dict) else repr(value)
 
 
@@ -102,7 +109,7 @@ def load_supervisor(path):
         line = " at line %d" % (mark.line + 1) if mark is not None else ""
         raise InputError(name, "", "not valid YAML%s: %s" % (line, getattr(exc, "problem", None) or exc))
     if not isinstance(doc, dict):
-        raise InputError(name, "", "expected a mapping of keys at the top level, got %s" % _show(doc))
+        raise InputError(name, "", "expected a mapping of keys at the top level, got %s" % show_value(doc))
     spec = _parse(_Reader(name, doc))
     spec.size_bytes = len(raw)
     return spec
@@ -122,7 +129,7 @@ def _parse(r):
     seen: dict = {}
     for i, raw in enumerate(r.list("events", n_events, "num_events")):
         if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
-            r.fail("events[%d]" % i, "%s is not an event name (letters, digits and '_')" % _show(raw))
+            r.fail("events[%d]" % i, "%s is not an event name (at most 255 letters, digits and '_')" % show_value(raw))
         bare = bare_name(raw)
         if bare in seen:
             r.fail("events[%d]" % i, "duplicate event name (also events[%d])" % seen[bare], "event EV_%s" % bare)
@@ -146,7 +153,7 @@ def _parse(r):
             r.fail("sup_events[%d]" % s, "expected a list of %d flags (num_events)" % n_events, "supervisor %d" % s)
         for e, value in enumerate(row):
             if value not in ("0", "1"):
-                r.fail("sup_events[%d][%d]" % (s, e), "value %s is not 0 or 1" % _show(value),
+                r.fail("sup_events[%d][%d]" % (s, e), "value %s is not 0 or 1" % show_value(value),
                        "supervisor %d, event EV_%s" % (s, events[e]))
         alphabets.append(frozenset(events[e] for e in range(n_events) if row[e] == "1"))
 
@@ -203,7 +210,7 @@ def _parse_block(r, data, start, end, s, index, alphabet):
             p = pos + 1 + 3 * k
             raw = data[p]
             if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
-                r.fail("sup_data[%d]" % p, "%s is not an event name" % _show(raw), where)
+                r.fail("sup_data[%d]" % p, "%s is not an event name" % show_value(raw), where)
             name = bare_name(raw)
             at = "%s, event EV_%s" % (where, name)
             if name not in index:
@@ -252,7 +259,7 @@ def _parse_probabilities(r, supervisors, controllable, index, n_sups):
                     r.fail("sup_data_prob", "block ends inside a state's probabilities", at)
                 value = probability(data[p])
                 if value is None:
-                    r.fail("sup_data_prob[%d]" % p, "%s is not a probability in [0, 1]" % _show(data[p]), at)
+                    r.fail("sup_data_prob[%d]" % p, "%s is not a probability in [0, 1]" % show_value(data[p]), at)
                 t.probability = value
             pos += 1 + count
         if pos != end:

@@ -19,6 +19,15 @@ def with_probability(text):
     return PROBABILISTIC.replace("0.70000000", text, 1)
 
 
+def gen_with_events(count):
+    """A libFAUDES .gen automaton with ``count`` self-loop events."""
+    events = " ".join("e%d" % i for i in range(count))
+    loops = "\n".join("s0 e%d s0" % i for i in range(count))
+    return ("<Generator>\n\"many\"\n<Alphabet>\n%s\n</Alphabet>\n<States>\ns0\n</States>\n<TransRel>\n%s\n"
+            "</TransRel>\n<InitStates>\ns0\n</InitStates>\n<MarkedStates>\ns0\n</MarkedStates>\n</Generator>\n"
+            % (events, loops))
+
+
 CASES = {
     "deep_nesting.yaml": ("a: " + "[" * 50000 + "]" * 50000 + "\n",
                           "not a supervisor: lists or mappings nested too deeply"),
@@ -26,6 +35,11 @@ CASES = {
                           "num_supervisors: value of 5000 digits out of range"),
     "probability_over_zero.yaml": (with_probability("1/0"), "is not a probability in [0, 1]"),
     "probability_tiny_exponent.yaml": (with_probability("1e-100000000"), "is not a probability in [0, 1]"),
+    "name_with_newline.yaml": (WORKER.replace("EV_moveToCharge", '"EV_a\\nb"', 1),
+                               "events[0]: 'EV_a\\nb' is not an event name"),
+    "name_with_nul.yaml": (WORKER.replace("EV_moveToCharge", '"EV_a\\0b"', 1), "events[0]: 'EV_a\\x00b' is not an event name"),
+    "name_of_300.yaml": (WORKER.replace("EV_moveToCharge", "EV_" + "a" * 300), "is not an event name (at most 255"),
+    "events_300.gen": (gen_with_events(300), "300 events, over the image format's limit of 255"),
     "superscript_id.xml": (re.sub(r'source="(\d+)"', 'source="²"', XML_PLANT, count=1),
                            "source: transition: expected a non-negative integer id of at most 9 digits, got '²'"),
 }
@@ -39,6 +53,6 @@ def test_hostile_input_is_one_line(name, tmp_path):
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["gen", str(path), "--target", "c", "-o", str(out)])
     assert result.exit_code == 2, result.output
-    assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: %s: " % path)
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: ") and name in result.stderr
     assert message in result.stderr
     assert not out.exists()

@@ -61,7 +61,7 @@ MALFORMED = [
     ("nza", '{ a = 1, a = 2 }', "line 1: not a Lua table literal: key 'a' is nil or given twice"),
     ("nza", NZA_G.replace('["target"] = 1', '["target"] = 2'), "transitions[1].target: expected an index in 1..1, got 2"),
     ("nza", NZA_G.replace('["initial"] = true', '["initial"] = 1'), "states[1].initial: expected true or false, got 1"),
-    ("nza", NZA_G.replace('"a"', '"a b"'), "events[1]: event 1: 'a b' is not an event name (letters, digits and '_')"),
+    ("nza", NZA_G.replace('"a"', '"a b"'), "events[1]: event 1: 'a b' is not an event name (at most 255 letters, digits and '_')"),
     ("nza", NZA_G.replace('["initial"] = true', '["initial"] = false'), "states: no initial state"),
     ("nza", NZA_G.replace('["states"] = {', '["states"] = { [3] = {}, '), "states: expected a list of tables indexed 1..n"),
     ("xmd", XMD_HEAD + '<!DOCTYPE m [<!ENTITY x "y">]><model type="FSA"><data/></model>', "a DOCTYPE or entity declaration is not accepted"),
@@ -96,7 +96,7 @@ MALFORMED = [
     ("gen", "<Generator> <Alphabet> a </Alphabet> <States> 1 </States> <MarkedStates> 7 </MarkedStates> "
             "<InitStates> 1 </InitStates> </Generator>", "MarkedStates: state 7 is not in States"),
     ("gen", "<Generator> <Alphabet> a.b </Alphabet> </Generator>",
-     "Alphabet: event a.b: 'a.b' is not an event name (letters, digits and '_')"),
+     "Alphabet: event a.b: 'a.b' is not an event name (at most 255 letters, digits and '_')"),
     ("gen", "<Generator> <States> 1 </States> </Generator>", "InitStates: no initial state"),
     ("gen", "<Generator>\n% swarmvm public: z\n<Alphabet> a </Alphabet> </Generator>",
      "swarmvm public: event z is not in the Alphabet"),
