@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
 from . import footprint as fp
-from . import properties
+from . import properties, script
 from .equiv import compare, format_difference
 from .errors import InputError, read_input
 from .export import export_files
@@ -18,7 +18,7 @@ from .pipeline import Compiled, compile_inputs, compile_spec, load
 from .properties import format_report
 from .render import write_outputs
 from .runtime import python_vm
-from .script import format_script, parse_script, random_script
+from .script import parse_script
 from .synth import models_by_name, synthesise
 from .synth_script import read_synth_script
 from .targets import TARGETS, generate
@@ -142,10 +142,17 @@ def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str |
     return Generated(compiled, write_outputs(outdir, files), drifts)
 
 
-def make_script(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> str:
-    """A reproducible random event script (docs/conformance.md) for a supervisor."""
+def script_lines(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> Iterator[str]:
+    """The lines (without newlines) of a reproducible random event script (docs/conformance.md)
+    for a supervisor, produced as they are read. The supervisor is compiled first, so bad input
+    raises InputError here, before any line."""
     compiled = compile_model(inputs)
-    return format_script(random_script(compiled.tables, steps, seed, density), compiled.model.events)
+    return script.script_lines(script.random_rows(compiled.tables, steps, seed, density), compiled.model.events)
+
+
+def make_script(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> str:
+    """A reproducible random event script (docs/conformance.md) for a supervisor, as text."""
+    return "".join(line + "\n" for line in script_lines(inputs, steps, seed, density))
 
 
 def _image_of(inputs: Sequence[str]) -> "Image":

@@ -111,7 +111,8 @@ def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, lea
 @reports_errors
 def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> None:
     """Print a reproducible random event script for a supervisor."""
-    click.echo(api.make_script(inputs, steps, seed, density), nl=False)
+    for line in api.script_lines(inputs, steps, seed, density):
+        click.echo(line)
 
 
 @main.command()

@@ -30,16 +30,27 @@ def parse_script(path, text, names, controllable):
     return rows
 
 
-def format_script(rows, names):
-    """Rows of event indices -> script text (events in index order)."""
-    lines = ["# swarmvm event script: one step per line, the uncontrollable events that occur"]
+def script_lines(rows, names):
+    """Rows of event indices -> the script's lines, without newlines (events in index order),
+    one at a time: a script of millions of steps is written in constant memory."""
+    yield "# swarmvm event script: one step per line, the uncontrollable events that occur"
     for row in rows:
-        lines.append(" ".join("EV_" + names[e] for e in sorted(row)) or "-")
-    return "\n".join(lines) + "\n"
+        yield " ".join("EV_" + names[e] for e in sorted(row)) or "-"
+
+
+def format_script(rows, names):
+    """Rows of event indices -> script text."""
+    return "".join(line + "\n" for line in script_lines(rows, names))
+
+
+def random_rows(tables, steps, seed, density=0.25):
+    """A reproducible random script over the model's uncontrollable events, row by row."""
+    rng = random.Random(seed)
+    uncontrollable = [e for e in range(tables.num_events) if not tables.controllable >> e & 1]
+    for _ in range(steps):
+        yield {e for e in uncontrollable if rng.random() < density}
 
 
 def random_script(tables, steps, seed, density=0.25):
-    """A reproducible random script over the model's uncontrollable events."""
-    rng = random.Random(seed)
-    uncontrollable = [e for e in range(tables.num_events) if not tables.controllable >> e & 1]
-    return [{e for e in uncontrollable if rng.random() < density} for _ in range(steps)]
+    """The rows of :func:`random_rows` as a list."""
+    return list(random_rows(tables, steps, seed, density))
