@@ -44,6 +44,22 @@ def test_c_target_builds_and_runs_with_its_makefile(tmp_path):
     subprocess.run(["make", "-s", "CFLAGS=%s -O2 -DSVM_STEPS=200" % " ".join(STRICT)], cwd=tmp_path, check=True,
                    capture_output=True)
     assert subprocess.run([str(tmp_path / "energy_worker")], timeout=10).returncode == 0
+    assert subprocess.run([str(tmp_path / "energy_worker"), "1000"], timeout=10).returncode == 0
+    refused = subprocess.run([str(tmp_path / "energy_worker"), "ten"], capture_output=True, text=True, timeout=10)
+    assert refused.returncode == 2 and refused.stderr.startswith("usage: ")
+
+
+def test_c_program_without_a_step_count_says_it_runs_until_stopped(tmp_path):
+    gen(EXAMPLE, "c", tmp_path, "energy_worker")
+    subprocess.run(["make", "-s"], cwd=tmp_path, check=True, capture_output=True)
+    proc = subprocess.Popen([str(tmp_path / "energy_worker")], stderr=subprocess.PIPE, text=True)
+    try:
+        line = proc.stderr.readline()
+        assert proc.poll() is None       # still stepping
+    finally:
+        proc.kill()
+        proc.wait()
+    assert line == "%s: stepping the VM until stopped (%s N stops after N steps)\n" % ((tmp_path / "energy_worker",) * 2)
 
 
 SCT_CONTROLLER = r"""
