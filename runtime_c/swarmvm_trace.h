@@ -32,16 +32,23 @@ static inline void svm_put_decimal(svm_putc_fn put, uint32_t value)
     }
 }
 
-/* "EV_<name>", or "EV_<index>" for an image without names. */
+/* "EV_<name>", or "EV_<index>" for an image without names. The name is read from the image a
+ * byte at a time (names hold up to 255 characters: no buffer to size, none cut short). */
 static inline void svm_put_event(svm_putc_fn put, const svm_vm_t *vm, uint8_t event)
 {
-    char name[48];
+    uint16_t at = vm->names_at;
+    uint8_t e, left;
     svm_put_text(put, "EV_");
-    if (svm_has_names(vm)) {
-        (void)svm_event_name(vm, event, name, sizeof name);
-        svm_put_text(put, name);
-    } else {
+    if (!svm_has_names(vm)) {
         svm_put_decimal(put, event);
+        return;
+    }
+    for (e = 0; e < event; e++) {
+        at = (uint16_t)(at + 1u + svm_image_byte(vm, at));
+    }
+    for (left = svm_image_byte(vm, at); left != 0u; left--) {
+        at++;
+        put((char)svm_image_byte(vm, at));
     }
 }
 
