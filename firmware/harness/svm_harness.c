@@ -17,7 +17,7 @@
 
 static svm_vm_t vm;
 static uint8_t row[SVM_MASK_BYTES];
-static uint8_t fired[SVM_MAX_EVENTS + 1];
+static uint8_t fired[SVM_MAX_EVENTS];   /* a step fires each event at most once */
 static uint8_t num_fired;
 
 /* Bit e%8 of a mask byte, by table: AVR shifts by a variable count one bit per cycle pair, and
@@ -31,7 +31,7 @@ static uint8_t row_has(uint8_t event)
 
 static void record(uint8_t event)
 {
-    if (num_fired < sizeof fired) {
+    if (num_fired < SVM_MAX_EVENTS) {
         fired[num_fired++] = event;
     }
 }
