@@ -27,6 +27,16 @@ INTEGER = re.compile(r"[0-9]+\Z")
 PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
 
 
+class _NoAliasLoader(yaml.BaseLoader):
+    """YAML with every scalar a string, and no aliases: a supervisor file never needs one, and
+    nested aliases ("billion laughs") would make a small file expand to an enormous one."""
+
+    def compose_node(self, parent, index):
+        if self.check_event(yaml.AliasEvent):
+            raise yaml.composer.ComposerError(None, None, "aliases (*name) are not accepted", self.peek_event().start_mark)
+        return super().compose_node(parent, index)
+
+
 def probability(text):
     """``text`` as an exact probability in [0, 1], else None. The form is checked first:
     ``Fraction`` takes '1e-100000000' (minutes of arithmetic) and '1/0' (ZeroDivisionError)."""
@@ -101,7 +111,7 @@ def load_supervisor(path):
     except UnicodeDecodeError as exc:
         raise InputError(name, "", "not UTF-8 text (byte %d)" % exc.start)
     try:
-        doc = yaml.load(text, Loader=yaml.BaseLoader)
+        doc = yaml.load(text, Loader=_NoAliasLoader)
     except RecursionError:
         raise InputError(name, "", "not a supervisor: lists or mappings nested too deeply")
     except yaml.YAMLError as exc:

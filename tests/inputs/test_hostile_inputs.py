@@ -39,6 +39,9 @@ CASES = {
                                "events[0]: 'EV_a\\nb' is not an event name"),
     "name_with_nul.yaml": (WORKER.replace("EV_moveToCharge", '"EV_a\\0b"', 1), "events[0]: 'EV_a\\x00b' is not an event name"),
     "name_of_300.yaml": (WORKER.replace("EV_moveToCharge", "EV_" + "a" * 300), "is not an event name (at most 255"),
+    "billion_laughs.yaml": ("a: &a [x, x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+                            "c: [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n",
+                            "not valid YAML at line 2: aliases (*name) are not accepted"),
     "events_300.gen": (gen_with_events(300), "300 events, over the image format's limit of 255"),
     "superscript_id.xml": (re.sub(r'source="(\d+)"', 'source="²"', XML_PLANT, count=1),
                            "source: transition: expected a non-negative integer id of at most 9 digits, got '²'"),
