@@ -9,7 +9,7 @@ literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "c
 "loaded" are one code path.
 """
 
-__all__ = ["FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
+__all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
            "SCT", "SCTPub", "format_trace_line", "replay"]
 
 from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
@@ -34,6 +34,19 @@ class UnboundEvents(LookupError):
     def __init__(self, names):
         super().__init__("no check bound for " + ", ".join(names))
         self.names = names
+
+
+class CallbackError(RuntimeError):
+    """A check or an action raised; the original exception is ``__cause__``.
+
+    The policy (docs/semantics.md, "Callbacks that raise"): a check that raises ends the step
+    before any transition, so the VM is as it was before the step; an action that raises ends
+    the step after its own event's transition, which stays applied (the supervisors have moved;
+    the robot's side of it failed). Either way the next ``step()`` runs normally."""
+
+    def __init__(self, event, kind, cause):
+        super().__init__("the %s of %s raised %s: %s" % (kind, event, type(cause).__name__, cause))
+        self.event, self.kind = event, kind
 
 
 class XorShift32:
@@ -225,7 +238,10 @@ class VM:
                 states[sup] = target
         action = self.actions.get(event)
         if action is not None:
-            action(self.data.get(event))
+            try:
+                action(self.data.get(event))
+            except Exception as exc:
+                raise CallbackError(self.image.event_name(event), "action", exc) from exc
 
     def _weight(self, event):
         weight = Q15_ONE
@@ -264,10 +280,14 @@ class VM:
         polls = self._polls
         if polls is None:
             polls = self._polls = [(e, self.checks[e], self.data.get(e)) for e in self.input_order if e in self.checks]
+        polled = -1     # the event whose check runs: named if it raises
+        try:
+            true = [event for event, check, data in polls if (polled := event) >= 0 and check(data)]
+        except Exception as exc:
+            raise CallbackError(self.image.event_name(polled), "check", exc) from exc
         if self.inputs == "level":
-            fired = [event for event, check, data in polls if check(data)]
+            fired = true
         else:
-            true = [event for event, check, data in polls if check(data)]
             previous, current = self.previous, sum(1 << event for event in true)
             fired = [event for event in true if not previous >> event & 1]
             self.previous = current
