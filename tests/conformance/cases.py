@@ -62,3 +62,13 @@ def reference(b, run):
     vm = python_vm()
     machine = vm.VM(b.image, inputs=run.inputs, control=run.control, policy=run.policy, seed=run.seed)
     return vm.replay(machine, b.scripts[run.script])
+
+
+def one_supervisor_yaml(events, controllable, sup_data):
+    """A supervisor.yaml of one local supervisor whose alphabet is every event, all private:
+    ``events`` bare names, ``controllable`` 0/1 per event, ``sup_data`` its flat block (as text)."""
+    n = len(events)
+    return ("num_events: %d\nnum_supervisors: 1\nevents: [ %s ]\nev_controllable: [ %s ]\nev_shared: [ %s ]\n"
+            "sup_events: [ [ %s ] ]\nsup_init_state: [ 0 ]\nsup_current_state: [ 0 ]\nsup_data_pos: [ 0 ]\n"
+            "sup_data: [ %s ]\n" % (n, ",".join("EV_" + e for e in events), ",".join(map(str, controllable)),
+                                    ",".join(["0"] * n), ",".join(["1"] * n), sup_data))

@@ -3,22 +3,11 @@ the Python reference (the C printer used to cut them at 47 characters)."""
 
 from conformance import c_harness
 from conformance._c_compare import mismatches
-from conformance.cases import Batch, Run
+from conformance.cases import Batch, Run, one_supervisor_yaml
 from swarmvm.pipeline import compile_inputs
 
 LONG = "x" * 255
-MODEL = """
-num_events: 2
-num_supervisors: 1
-events: [ EV_%s,EV_u ]
-ev_controllable: [ 1,0 ]
-ev_shared: [ 0,0 ]
-sup_events: [ [ 1,1 ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 2,EV_%s,0,0,EV_u,0,0 ]
-""" % (LONG, LONG)
+MODEL = one_supervisor_yaml([LONG, "u"], [1, 0], "2,EV_%s,0,0,EV_u,0,0" % LONG)
 
 
 def test_a_255_character_name_prints_whole(tmp_path):

@@ -4,24 +4,13 @@ stop, while Python and C++ counted on) the Python, C and C++ traces are still th
 import subprocess
 
 from conformance import c_harness
-from conformance.cases import Batch, Run, reference
+from conformance.cases import Batch, Run, one_supervisor_yaml, reference
 from conformance.cpp_harness import FLAGS, c_array, runs_text
 from swarmvm.pipeline import compile_inputs
 from swarmvm.runtime import RUNTIME_CPP
 
 # EV_u is in the supervisor's alphabet but possible in no state: every step it is seen is a violation.
-NEVER_POSSIBLE = """
-num_events: 2
-num_supervisors: 1
-events: [ EV_c,EV_u ]
-ev_controllable: [ 1,0 ]
-ev_shared: [ 0,0 ]
-sup_events: [ [ 1,1 ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 1,EV_c,0,0 ]
-"""
+NEVER_POSSIBLE = one_supervisor_yaml(["c", "u"], [1, 0], "1,EV_c,0,0")
 STEPS = 70000
 
 

@@ -3,23 +3,11 @@
 
 from conformance import c_harness
 from conformance._c_compare import mismatches
-from conformance.cases import Batch, Run
+from conformance.cases import Batch, Run, one_supervisor_yaml
 from swarmvm.pipeline import compile_inputs
 
-EVENTS = ["EV_c"] + ["EV_u%d" % i for i in range(254)]
-MODEL = """
-num_events: 255
-num_supervisors: 1
-events: [ %s ]
-ev_controllable: [ %s ]
-ev_shared: [ %s ]
-sup_events: [ [ %s ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 255,%s ]
-""" % (",".join(EVENTS), ",".join(["1"] + ["0"] * 254), ",".join(["0"] * 255), ",".join(["1"] * 255),
-       ",".join("%s,0,0" % e for e in EVENTS))
+EVENTS = ["c"] + ["u%d" % i for i in range(254)]
+MODEL = one_supervisor_yaml(EVENTS, [1] + [0] * 254, "255," + ",".join("EV_%s,0,0" % e for e in EVENTS))
 
 
 def test_255_events_on_the_host(tmp_path):
