@@ -25,7 +25,10 @@ BUILD_LIMITS = {"exact-limits": (True, ()), "default-limits": (False, ()),
           "wide-limits": (False, ("-DSVM_MAX_EVENTS=100",))}
 
 
-@pytest.mark.parametrize("limits", BUILD_LIMITS)
+# The exact-limits build runs in the quick suite; the other two (same runs, other code paths) are
+# marked slow only for their number: 22 more builds.
+@pytest.mark.parametrize("limits", [pytest.param(k, marks=() if k == "exact-limits" else pytest.mark.slow)
+                                    for k in BUILD_LIMITS])
 @pytest.mark.parametrize("path", SUPERVISORS, ids=lambda p: p.rsplit("/", 1)[-1][:-5])
 def test_host_trace_equals_reference(path, limits, tmp_path):
     b = batch(path)
