@@ -32,7 +32,7 @@ def canonicalise(spec):
             warnings.append("%s: supervisor %d: %d unreachable state(s) dropped (states %s)"
                             % (spec.source, s, dropped, ", ".join(map(str, missing))))
         states = tuple(tuple((e, number[target], p) for e, target, p in rows[old]) for old in order)
-        supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states))
+        supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states, tuple(order)))
     return Model(
         source=spec.source, events=events,
         controllable=tuple(spec.controllable[n] for n in events),

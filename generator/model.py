@@ -47,9 +47,12 @@ class Supervisors:
 @dataclass(frozen=True)
 class CanonicalSupervisor:
     """States renumbered breadth-first from the initial state (which is 0); per state the
-    transitions as (event index, target, probability or None), sorted by event index."""
+    transitions as (event index, target, probability or None), sorted by event index;
+    ``input_states[i]`` is the input's number of state i (for the compatibility API's exact mode,
+    which reports states as the input numbers them; not part of the model's identity)."""
     alphabet: frozenset          # event indices
     states: tuple
+    input_states: tuple = field(default=(), compare=False)
 
 
 @dataclass(frozen=True)

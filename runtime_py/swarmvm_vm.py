@@ -12,6 +12,9 @@ literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "c
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
            "SCT", "SCTPub", "format_trace_line", "replay"]
 
+import os
+import random
+
 from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 
 INPUT_MODES = ("level", "edge")
@@ -328,35 +331,110 @@ def replay(vm, rows):
 
 
 class SCT:
-    """Nadzoru 2's Python VM API over :class:`VM`, so published controllers run unchanged.
+    """Nadzoru 2's Python VM API over :class:`VM`, so published controllers run unchanged: swap
+    ``from sct import SCT`` for ``from swarmvm_vm import SCT`` (docs/compat.md).
 
-    ``SCT(path)`` reads a table image: a ``.svm`` file, or for a ``supervisor.yaml`` path the
-    ``supervisor.svm`` that ``swarmvm pack`` writes beside it (no YAML parser on the robot).
-    ``EV`` maps ``EV_x`` names to indices; ``add_callback(EV['EV_x'], callback, check, data)``
-    and ``run_step()`` behave as Nadzoru's; events are processed public-first, as SCTPub does."""
+    ``SCT(path)`` takes the ``supervisor.yaml`` itself when the swarmvm compiler is installed,
+    else the ``.svm`` that ``swarmvm pack`` writes beside it (a robot without YAML support), or a
+    ``.svm`` path. ``EV`` maps ``EV_x`` names to indices; ``add_callback(EV['EV_x'], callback,
+    check, data)`` and ``run_step()`` behave as the published VM's.
 
-    def __init__(self, filename, **options):
-        path = filename[:-5] + ".svm" if filename.endswith(".yaml") else filename
-        self.vm = VM(Image.load(path), **options)
-        image = self.vm.image
-        self.EV = {image.event_name(e): e for e in range(image.num_events)}
-        self.ev_controllable = [image.controllable >> e & 1 for e in range(image.num_events)]
+    Exact mode (the default) is the published step to the bit: every check in the file's event
+    order before any transition; the events whose check was true applied in that order, each
+    callback right after its transition; then one enabled controllable event, the k-th in file
+    order with ``k = random.randint(0, 1000000000) % n`` from the global ``random`` module.
+    Indices are the file's. It needs the file's event order, which only the YAML file gives: an
+    image alone refuses it (ValueError). ``exact=False`` runs the canonical VM step
+    (docs/semantics.md; indices by name, public events first, swarmvm's own generator, the
+    options of :class:`VM`): faster, and independent of the order an export happened to use."""
+
+    _public_first = False
+
+    def __init__(self, filename, exact=True, **options):
+        image, file_events, file_states = _compat_image(filename)
+        if exact and file_events is None:
+            raise ValueError("%s: exact mode needs the supervisor's event order, which only its YAML file gives "
+                             "(with the swarmvm compiler installed); give the .yaml, or exact=False" % filename)
+        self.vm = VM(image, **options)
+        self.exact = exact
+        self._file_states = file_states if exact else None
+        names = [image.event_name(e) for e in range(image.num_events)]
+        # Index a caller sees -> canonical index: the file's order in exact mode, else the image's.
+        self._canonical = [names.index("EV_" + name) for name in file_events] if exact else list(range(len(names)))
+        self.EV = {names[c]: i for i, c in enumerate(self._canonical)}
+        self.ev_controllable = [image.controllable >> c & 1 for c in self._canonical]
         self.num_events = image.num_events
         self.num_supervisors = image.num_supervisors
+        self.last_events, self.input_buffer = [], []
+        if exact:
+            order = range(len(self._canonical))
+            inputs = [i for i in order if not self.ev_controllable[i]]
+            public = [i for i in inputs if image.public >> self._canonical[i] & 1]
+            self._checks_order = inputs
+            self._apply_order = public + [i for i in inputs if i not in public] if self._public_first else inputs
+            self._file_index = {c: i for i, c in enumerate(self._canonical)}
 
     @property
     def sup_current_state(self):
-        return self.vm.states
+        """Each supervisor's state: numbered as in the file in exact mode, else canonically."""
+        if self._file_states is None:
+            return self.vm.states
+        return [numbers[state] for numbers, state in zip(self._file_states, self.vm.states)]
 
     def add_callback(self, event, clbk, ci, sup_data):
-        controllable = self.ev_controllable[self.vm._index(event)]
-        self.vm.bind(event, action=clbk, check=None if controllable else ci, data=sup_data)
+        canonical = self._canonical[event]
+        controllable = self.vm.image.controllable >> canonical & 1
+        self.vm.bind(canonical, action=clbk, check=None if controllable else ci, data=sup_data)
 
     def run_step(self):
-        self.vm.step()
+        """One step; ``last_events`` are the events it applied and ``input_buffer`` the
+        uncontrollable ones whose check was true (indices as in ``EV``)."""
+        if not self.exact:
+            fired = self.vm.step()
+            self.last_events = fired
+            self.input_buffer = [e for e in fired if not self.ev_controllable[e]]
+            return
+        vm, canonical = self.vm, self._canonical
+        true = set()
+        for i in self._checks_order:
+            check = vm.checks.get(canonical[i])
+            if check is not None and check(vm.data.get(canonical[i])):
+                true.add(i)
+        fired = [i for i in self._apply_order if i in true]
+        for i in fired:
+            vm._apply(canonical[i])
+        self.input_buffer = list(fired)
+        enabled = sorted(self._file_index[c] for c in vm.enabled())
+        if enabled:
+            choice = enabled[random.randint(0, 1000000000) % len(enabled)]
+            vm._apply(canonical[choice])
+            fired.append(choice)
+        self.last_events = fired
 
     def get_events(self):
         return self.EV, self.ev_controllable
 
 
-SCTPub = SCT
+class SCTPub(SCT):
+    """The published ``SCTPub``: as :class:`SCT`, but in exact mode the public (shared) events
+    whose check was true are applied before the private ones (checks still run in file order).
+    In canonical mode every swarmvm step applies public events first anyway."""
+
+    _public_first = True
+
+
+def _compat_image(filename):
+    """(image, the file's bare event names in file order, each supervisor's file state numbers by
+    canonical state) for :class:`SCT`, the last two None without the YAML file. A YAML path is
+    compiled in memory when it exists and the swarmvm compiler can be imported; otherwise the
+    ``.svm`` beside it is read, as is a ``.svm`` path: an image has no file order."""
+    if filename.endswith(".yaml") and os.path.exists(filename):
+        try:
+            from swarmvm.pipeline import compile_spec, load
+        except ImportError:
+            return Image.load(filename[:-5] + ".svm"), None, None
+        spec = load([filename])
+        compiled = compile_spec(spec, [filename], name="sct")
+        return (Image.parse(compiled.image), list(spec.events),
+                [sup.input_states for sup in compiled.model.supervisors])
+    return Image.load(filename[:-5] + ".svm" if filename.endswith(".yaml") else filename), None, None

@@ -1,0 +1,207 @@
+"""Exact mode of the Python SCT/SCTPub (docs/compat.md) against an oracle written here from the
+published Python VM's step as issue 17 describes it (not from its code, which is not kept):
+
+- the check of every uncontrollable event that has one, in the file's event order, before any
+  transition; then, in that order (SCTPub: public events first), each event whose check was true
+  is applied (every supervisor whose alphabet holds it moves) and its callback runs right after;
+- then the enabled controllable events in file order; with n > 0 of them the k-th is taken,
+  k = random.randint(0, 1000000000) % n from the global random module, applied, its callback run.
+
+Both run every corpus supervisor for thousands of steps with checks that have side effects (they
+draw from a shared world and flip flags other checks read); after every step the states, the
+events applied, the order of every check and callback call and the global random state must be
+the same."""
+
+import random
+from pathlib import Path
+
+import pytest
+import yaml
+
+CORPUS = sorted(str(p) for p in (Path(__file__).resolve().parents[1] / "corpus").glob("*/*.yaml"))
+STEPS = 2000
+
+
+class PublishedStep:
+    """The oracle: the published VM's tables read straight from the YAML file, indices the file's."""
+
+    def __init__(self, path, public_first):
+        doc = yaml.safe_load(Path(path).read_text())
+        self.events = [str(e) for e in doc["events"]]
+        self.EV = {name: i for i, name in enumerate(self.events)}
+        self.controllable = [int(c) for c in doc["ev_controllable"]]
+        public = doc.get("ev_public", doc.get("ev_shared", [0] * len(self.events)))
+        self.public = [int(p) for p in public]
+        self.alphabet = [[int(x) for x in row] for row in doc["sup_events"]]
+        self.state = [int(s) for s in doc["sup_init_state"]]
+        data, starts = doc["sup_data"], doc["sup_data_pos"]
+        # moves[s][state] = {event: target}, from each supervisor's block of state records
+        self.moves = []
+        for s, start in enumerate(starts):
+            pos, table = int(start), []
+            end = int(starts[s + 1]) if s + 1 < len(starts) else len(data)
+            while pos < end:
+                count = int(data[pos])
+                table.append({self.EV[str(data[pos + 1 + 3 * k])]: int(data[pos + 2 + 3 * k]) * 256 + int(data[pos + 3 + 3 * k])
+                              for k in range(count)})
+                pos += 1 + 3 * count
+            self.moves.append(table)
+        self.public_first = public_first
+        self.callbacks = {}
+
+    def add_callback(self, event, clbk, ci, data):
+        self.callbacks[event] = (clbk, ci, data)
+
+    def _apply(self, event):
+        for s, table in enumerate(self.moves):
+            if self.alphabet[s][event] and event in table[self.state[s]]:
+                self.state[s] = table[self.state[s]][event]
+        clbk, _, data = self.callbacks.get(event, (None, None, None))
+        if clbk is not None:
+            clbk(data)
+
+    def _enabled(self, event):
+        return all(not self.alphabet[s][event] or event in table[self.state[s]] for s, table in enumerate(self.moves))
+
+    def run_step(self):
+        inputs = [e for e in range(len(self.events)) if not self.controllable[e]]
+        true = [e for e in inputs if self.callbacks.get(e, (None, None))[1] is not None
+                and self.callbacks[e][1](self.callbacks[e][2])]
+        if self.public_first:
+            true = [e for e in true if self.public[e]] + [e for e in true if not self.public[e]]
+        for e in true:
+            self._apply(e)
+        enabled = [e for e in range(len(self.events)) if self.controllable[e] and self._enabled(e)]
+        fired = list(true)
+        if enabled:
+            choice = enabled[random.randint(0, 1000000000) % len(enabled)]
+            self._apply(choice)
+            fired.append(choice)
+        return fired
+
+
+class World:
+    """Side-effecting checks and logging callbacks, bound by name as a published controller does."""
+
+    def __init__(self, sct, names, seed):
+        self.draw, self.flags, self.calls = random.Random(seed), {}, []
+        for name in names:
+            index = sct.EV[name]
+            sct.add_callback(index, lambda data, name=name: self.act(name), lambda data, name=name: self.check(name),
+                             {"name": name})
+
+    def check(self, name):
+        self.calls.append("check " + name)
+        seen = self.flags.pop(name, False)            # a check that clears what another one set
+        other = "EV_" + str(self.draw.randrange(1000))
+        self.flags[other] = True
+        return seen or self.draw.random() < 0.3
+
+    def act(self, name):
+        self.calls.append("act " + name)
+        self.flags[name] = True                        # an action that a later check reads
+
+
+def run(sct, names, step, steps):
+    world = World(sct, names, seed=11)
+    random.seed(5)
+    rows = []
+    for _ in range(steps):
+        del world.calls[:]
+        fired = step()
+        rows.append((list(getattr(sct, "sup_current_state", None) or sct.state), fired, list(world.calls),
+                     random.getstate()))
+    return rows
+
+
+@pytest.mark.parametrize("public_first", [False, True], ids=["SCT", "SCTPub"])
+@pytest.mark.parametrize("path", CORPUS, ids=lambda p: Path(p).stem)
+def test_exact_mode_matches_the_published_step(vm, path, public_first):
+    oracle = PublishedStep(path, public_first)
+    compat = (vm.SCTPub if public_first else vm.SCT)(path)
+    assert compat.EV == oracle.EV and compat.ev_controllable == oracle.controllable
+    expected = run(oracle, list(oracle.EV), oracle.run_step, STEPS)
+
+    def compat_step():
+        compat.run_step()
+        return compat.last_events
+
+    got = run(compat, list(oracle.EV), compat_step, STEPS)
+    for number, (want, have) in enumerate(zip(expected, got), 1):
+        assert have[:3] == want[:3], "step %d" % number
+        assert have[3] == want[3], "random state after step %d" % number
+    assert any(len(row[1]) > 1 for row in got), "the run should fire several events in a step"
+
+
+class PublishedStyleDrone:
+    """A controller written for the published VM, as the drone study's robot program is: the
+    VM class is all it is given; callbacks are its methods, registered by name; the lostBid
+    check clears the flag the capableTask check reads (the side effect that makes order matter)."""
+
+    def __init__(self, sct_class, path):
+        self.sct = sct_class(path)
+        self.log, self.offered, self.lost = [], False, False
+        ev = self.sct.EV
+        for name in ("lostBid", "notCapableTask", "notCondReturn", "condReturn", "capableTask", "wonBid"):
+            self.sct.add_callback(ev["EV_" + name], None, getattr(self, "check_" + name), None)
+        for name in ("bid", "deliver", "return"):
+            self.sct.add_callback(ev["EV_" + name], getattr(self, "on_" + name), None, None)
+
+    def check_lostBid(self, _data):
+        lost, self.lost, self.offered = self.lost, False, False
+        return lost
+
+    def check_capableTask(self, _data):
+        self.offered = self.offered or random.random() < 0.5
+        return self.offered
+
+    def check_notCapableTask(self, _data):
+        return not self.offered and random.random() < 0.3
+
+    def check_wonBid(self, _data):
+        won = random.random() < 0.4
+        self.lost = not won
+        return won
+
+    def check_condReturn(self, _data):
+        return random.random() < 0.2
+
+    def check_notCondReturn(self, _data):
+        return random.random() < 0.5
+
+    def on_bid(self, _data):
+        self.log.append("bid")
+
+    def on_deliver(self, _data):
+        self.log.append("deliver")
+
+    def on_return(self, _data):
+        self.log.append("return")
+
+
+def test_a_published_style_controller_runs_unchanged(vm):
+    path = next(p for p in CORPUS if p.endswith("/uav.yaml"))
+    runs = []
+    for sct_class in (lambda p: PublishedStep(p, public_first=False), vm.SCT):
+        random.seed(42)
+        drone = PublishedStyleDrone(sct_class, path)
+        states = []
+        for _ in range(500):
+            drone.sct.run_step()
+            states.append(list(getattr(drone.sct, "sup_current_state", None) or drone.sct.state))
+        runs.append((drone.log, states, random.getstate()))
+    assert runs[0] == runs[1]
+    assert {"bid", "deliver", "return"} <= set(runs[0][0])
+
+
+def test_the_yaml_needs_no_pack_and_an_image_alone_refuses_exact_mode(vm, tmp_path):
+    source = Path(next(p for p in CORPUS if p.endswith("/energy_worker.yaml")))
+    (tmp_path / "supervisor.yaml").write_bytes(source.read_bytes())
+    sct = vm.SCT(str(tmp_path / "supervisor.yaml"))          # no supervisor.svm beside it
+    assert sct.exact and list(sct.EV) == PublishedStep(str(source), False).events
+    from swarmvm.pipeline import compile_inputs
+    (tmp_path / "supervisor.svm").write_bytes(compile_inputs([str(source)]).image)
+    with pytest.raises(ValueError, match="exact mode needs the supervisor's event order"):
+        vm.SCT(str(tmp_path / "supervisor.svm"))
+    canonical = vm.SCT(str(tmp_path / "supervisor.svm"), exact=False)
+    assert list(canonical.EV) == sorted(canonical.EV)       # events by name
