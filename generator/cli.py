@@ -221,3 +221,4 @@ def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, pro
 main.add_command(studies_cli.sim)
 main.add_command(studies_cli.sweep)
 main.add_command(studies_cli.plot)
+main.add_command(studies_cli.bounds)

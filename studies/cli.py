@@ -153,3 +153,61 @@ def plot_uav(results, out, tau):
 
 COMMANDS = (sim, sweep, plot)
 __all__ = ["sim", "sweep", "plot", "COMMANDS"]
+
+
+@click.group()
+def bounds():
+    """Print a study's theoretical bounds."""
+
+
+@bounds.command("energy")
+@click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
+              help="Fixed chargers (equations 1-3) or one mobile charger per worker.")
+@click.option("--workers", default=6, show_default=True, type=click.IntRange(1), help="n_w.")
+@click.option("--capacity", default=100.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+              help="Worker capacity c_w,max.")
+@click.option("--charge-rate", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+              help="Charging rate per second (workers and chargers).")
+@click.option("--move-rate", default=1.0, show_default=True, type=click.FloatRange(min=0), help="Moving, per second.")
+@click.option("--work-rate", default=1.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+              help="Working, per second.")
+@click.option("--core-rate", default=0.05, show_default=True, type=click.FloatRange(min=0), help="Core, per second.")
+@click.option("--commute-m", default=1.0, show_default=True, type=click.FloatRange(min=0),
+              help="Distance between the charging (or transfer) and work regions.")
+@click.option("--speed", default=0.12, show_default=True, type=click.FloatRange(min=0, min_open=True), help="m/s.")
+@click.option("--duration", default=600.0, show_default=True, type=click.FloatRange(min=0), help="tau, seconds.")
+@click.option("--charger-capacity", default=200.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+              help="Mobile charger capacity c_m,max.")
+@click.option("--transfer-rate", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+              help="What a mobile charger gives per second.")
+@click.option("--transfer-loss", default=0.0, show_default=True, type=click.FloatRange(0, 1, max_open=True),
+              help="Share of a transfer that is lost (1 - xi).")
+@click.option("--transfer-period", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Mobile: analyse this transfer period (s) instead of finding the best.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate, core_rate, commute_m, speed,
+                  duration, charger_capacity, transfer_rate, transfer_loss, transfer_period, as_json):
+    """Energy replenishment: work W, duty cycle and efficiency E the strategy cannot exceed."""
+    from .energy_replenishment import bounds as energy
+    rates = energy.Rates(capacity=capacity, charge=charge_rate, move=move_rate, work=work_rate, core=core_rate,
+                         commute_m=commute_m, speed_ms=speed, workers=workers, duration_s=duration)
+    try:
+        if strategy == "fixed":
+            result = dict(energy.fixed_bound(rates).as_dict(),
+                          constant_supply_work=energy.constant_supply_bound(rates).work)
+        else:
+            mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
+                                        transfer=transfer_rate, loss=transfer_loss)
+            found = (energy.mobile_bound(rates, mobile, transfer_period) if transfer_period
+                     else energy.best_transfer_period(rates, mobile))
+            if found is None or not found.feasible:
+                raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
+            result = dict(found.as_dict(), constant_supply_work=energy.constant_supply_bound(rates).work)
+    except ValueError as exc:
+        click.echo("swarmvm: error: bounds energy: %s" % exc, err=True)
+        sys.exit(2)
+    if as_json:
+        click.echo(json.dumps(result, sort_keys=True))
+        return
+    for key, value in result.items():
+        click.echo("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))

@@ -1,0 +1,67 @@
+"""The energy-replenishment bounds (studies/energy_replenishment/bounds.py) on design/STUDIES.md's
+worked check, the mobile-charger analysis's regimes, and `swarmvm bounds energy`."""
+
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from swarmvm.cli import main
+from swarmvm.studies.energy_replenishment.bounds import (MobileRates, Rates, best_transfer_period,
+                                                          constant_supply_bound, fixed_bound, mobile_bound)
+
+
+def test_fixed_bound_is_the_worked_check():
+    b = fixed_bound(Rates())
+    assert b.commute_s == pytest.approx(8.333, abs=1e-3)
+    assert b.work_s == pytest.approx(78.57, abs=0.01) and b.charge_s == pytest.approx(10.05, abs=0.01)
+    assert b.cycle_s == pytest.approx(105.29, abs=0.01) and b.duty_cycle == pytest.approx(0.7462, abs=1e-4)
+    assert round(b.work) == 26865 and round(100 * b.efficiency, 1) == 78.1
+
+
+def test_constant_supply_is_the_worked_check():
+    b = constant_supply_bound(Rates())
+    assert b.duty_cycle == pytest.approx(0.9045, abs=1e-4) and int(b.work) == 32563
+
+
+def test_seed_figures_as_fractions_of_the_bound():
+    """The seed's 24,943 units are 92.8 % of the bound, its 68.2 % efficiency 12.6 % below it."""
+    b = fixed_bound(Rates())
+    assert round(100 * 24943 / b.work, 1) == 92.8
+    assert round(100 * (1 - 0.682 / b.efficiency), 1) == 12.6
+
+
+def test_a_commute_longer_than_a_charge_lasts_is_refused():
+    with pytest.raises(ValueError, match="cannot reach the work region"):
+        fixed_bound(Rates(capacity=10))
+
+
+def test_mobile_regimes():
+    w, m = Rates(), MobileRates()
+    short = mobile_bound(w, m, 5.0)               # the charger comes back before the worker needs it
+    assert short.feasible and not short.worker_rests
+    assert short.duty_cycle == pytest.approx(constant_supply_bound(w).duty_cycle)
+    assert not mobile_bound(w, m, 25.0).feasible   # more than a charger can carry
+    lossy = MobileRates(loss=0.5, capacity=60)
+    rested = [b for b in (mobile_bound(w, lossy, t / 10) for t in range(1, 60)) if b.feasible and b.worker_rests]
+    assert rested and all(b.duty_cycle < short.duty_cycle for b in rested)
+    for b in (short, *rested):
+        assert 0 < b.efficiency < 1 and b.work == pytest.approx(w.workers * b.duty_cycle * w.duration_s * 10)
+
+
+def test_best_transfer_period_is_the_longest_of_the_best():
+    best = best_transfer_period(Rates(), MobileRates())
+    assert best.transfer_s == pytest.approx(10.0) and not best.worker_rests
+    assert mobile_bound(Rates(), MobileRates(), 10.1).duty_cycle < best.duty_cycle    # capacity caps the transfer
+    assert best_transfer_period(Rates(), MobileRates(capacity=1.0)) is None
+
+
+def test_the_command():
+    result = CliRunner().invoke(main, ["bounds", "energy", "--json"])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert round(data["work"]) == 26865 and round(data["efficiency"], 3) == 0.781
+    mobile = CliRunner().invoke(main, ["bounds", "energy", "--strategy", "mobile", "--transfer-period", "5", "--json"])
+    assert mobile.exit_code == 0 and json.loads(mobile.output)["transfer_s"] == 5.0
+    bad = CliRunner().invoke(main, ["bounds", "energy", "--capacity", "10"])
+    assert bad.exit_code == 2 and bad.output.startswith("swarmvm: error: bounds energy: a worker cannot reach")
