@@ -37,6 +37,7 @@ verbs() {
   "$cli" equiv synth.yaml "$example"
   "$cli" check --properties "$example"
   "$cli" export "$example" --format gen -o export && "$cli" export "$example" --format dot -o export
+  "$cli" bounds energy && "$cli" bounds energy --strategy mobile --json
 }
 for install in editable wheel; do
   mkdir -p "$work/run-$install"
