@@ -86,7 +86,7 @@ def write_image(inputs: Sequence[str], output: str, names: bool = True) -> Compi
     """Compile and write the table image to ``output`` (atomically)."""
     compiled = compile_model(inputs, names=names)
     target = Path(output).absolute()
-    write_outputs(target.parent, {target.name: (compiled.image, False)})
+    write_outputs(target.parent, {target.name: (compiled.ordered_image, False)})
     return compiled
 
 

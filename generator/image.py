@@ -14,8 +14,10 @@ from .errors import InputError
 FORMAT = runtime.image_format()
 
 
-def pack(tables, source, names=True):
-    """The image bytes; InputError when the model is too large for the format."""
+def pack(tables, source, names=True, order=None):
+    """The image bytes; InputError when the model is too large for the format. ``order`` (each
+    event's index in the source file, each global state's number in it) adds the order section
+    (docs/image-format.md)."""
     limits = [("events", tables.num_events, FORMAT.MAX_EVENTS),
               ("supervisors", tables.num_supervisors, FORMAT.MAX_SUPERVISORS),
               ("states", tables.num_states, FORMAT.MAX_STATES),
@@ -42,6 +44,9 @@ def pack(tables, source, names=True):
         sections["probs"] = b"".join(FORMAT.PROB.pack(p) for p in tables.probs)
     if names:
         sections["names"] = b"".join(bytes([len(n)]) + n.encode("ascii") for n in tables.names)
+    if order is not None:
+        event_order, state_order = order
+        sections["order"] = bytes(event_order) + b"".join(n.to_bytes(2, "little") for n in state_order)
     try:
         return FORMAT.assemble(tables.num_events, tables.num_supervisors, tables.num_states,
                                tables.num_transitions, tables.state_width, sections)

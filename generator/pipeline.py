@@ -20,6 +20,10 @@ class Compiled:
     model: Model
     tables: Tables
     image: bytes
+    # The image with the order section too when the input is a supervisor.yaml (its event order
+    # and state numbers, for the Python compatibility API's exact mode: docs/compat.md), else
+    # the image itself. `swarmvm pack` and the Python targets ship it; the VMs do not need it.
+    ordered_image: bytes = b""
 
 
 def expand_directories(paths):
@@ -62,7 +66,14 @@ def compile_inputs(paths, name=None, names=True):
 
 
 def compile_spec(spec, paths, name=None, names=True):
-    """The pipeline after loading: canonicalise, build tables, pack the image."""
+    """The pipeline after loading: canonicalise, build tables, pack the image (and the image
+    with the source order, see :class:`Compiled`)."""
     model = canonicalise(spec)
     tables = build_tables(model)
-    return Compiled(model_name(paths, name), model, tables, pack(tables, spec.source, names=names))
+    image = pack(tables, spec.source, names=names)
+    ordered = image
+    if names and len(paths) == 1 and paths[0].lower().endswith((".yaml", ".yml")):
+        ordered = pack(tables, spec.source, names=True, order=(
+            [spec.events.index(event) for event in model.events],
+            [number for sup in model.supervisors for number in sup.input_states]))
+    return Compiled(model_name(paths, name), model, tables, image, ordered)

@@ -4,6 +4,7 @@ A target differs from another only in its templates and the runtime files it shi
 tables and image are the same for all. A file entry is (template, output name, keep): output
 names may use ``{name}``; ``keep`` marks user-edited files that are never overwritten."""
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -20,6 +21,7 @@ class Target:
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
     prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
+    keeps_order: bool = False            # its image keeps the source order (the Python SCT's exact mode)
 
 
 # The Python VM and the image format it reads (swarmvm_vm imports swarmvm_format).
@@ -36,7 +38,8 @@ TARGETS = {
                    ("python/controller.py.j2", "{name}_controller.py", True)),
         copies=PY_RUNTIME_COPIES,
         learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
-        learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),)),
+        learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),),
+        keeps_order=True),
     "argos": Target(
         "ARGoS e-puck controller (C++17): image header, generated CCI_Controller base class, controller skeleton, CMakeLists.txt, example .argos",
         templates=(("argos/image.hpp.j2", "{name}_image.hpp", False),
@@ -52,7 +55,8 @@ TARGETS = {
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
                    ("pipuck/app.py.j2", "{name}_app.py", False),
                    ("pipuck/controller.py.j2", "{name}_controller.py", True)),
-        copies=PY_RUNTIME_COPIES + ((RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"),)),
+        copies=PY_RUNTIME_COPIES + ((RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"),),
+        keeps_order=True),
     "c": Target(
         "C VM (C99, host or microcontroller): tables with the image as a const array, dispatch glue, control loop, Makefile, controller skeleton",
         templates=(("c/tables.h.j2", "{name}_tables.h", False),
@@ -88,6 +92,8 @@ TARGETS = {
 def generate(compiled, target, **options):
     """{output name: (bytes, keep)} for one target: rendered templates, runtime copies, image."""
     spec = TARGETS[target]
+    if spec.keeps_order:
+        compiled = dataclasses.replace(compiled, image=compiled.ordered_image)
     extra = spec.prepare(compiled) if spec.prepare else {}
     values = context(compiled, target=target, **dict(options, **extra))
     templates, copies = spec.templates, spec.copies

@@ -507,6 +507,17 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
             }
         }
     }
+    if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
+        if (pos + e + 2u * (uint32_t)states > end) {
+            return SVM_ERR_LAYOUT;
+        }
+        for (i = 0; i < e; i++, pos++) {
+            if (rd_raw(image, source, (uint16_t)pos) >= e) {
+                return SVM_ERR_LAYOUT;
+            }
+        }
+        pos += 2u * (uint32_t)states;
+    }
     if (pos != end) {
         return SVM_ERR_LAYOUT;
     }

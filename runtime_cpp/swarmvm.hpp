@@ -46,7 +46,8 @@ constexpr std::size_t kAtMaskBytes = 13;
 constexpr std::size_t kAtLength = 14;            // u16 L, checksum included
 constexpr std::uint8_t kFlagNames = 0x01;
 constexpr std::uint8_t kFlagProbs = 0x02;
-constexpr std::uint8_t kKnownFlags = 0x03;       // an image with any other flag bit is refused
+constexpr std::uint8_t kFlagOrder = 0x04;        // source-file event indices (compatibility layers)
+constexpr std::uint8_t kKnownFlags = 0x07;       // an image with any other flag bit is refused
 constexpr std::uint32_t kQ15One = 32768;
 constexpr std::uint32_t kZeroSeed = 0x9E3779B9u;
 // The violation counter stops here on every runtime (docs/semantics.md).
@@ -325,6 +326,14 @@ inline void check_sections(const std::uint8_t* data, std::size_t end) {
                 }
             }
         }
+    }
+    if (flags & kFlagOrder) {
+        const std::size_t n_states = u16_at(data, kAtNumStates);
+        if (pos + n_events + 2 * n_states > end) throw layout_error("order section runs past the checksum");
+        for (unsigned e = 0; e < n_events; ++e, ++pos) {
+            if (data[pos] >= n_events) throw layout_error("order section names an event index beyond the events");
+        }
+        pos += 2 * n_states;
     }
     if (pos != end) {
         throw layout_error("sections end at byte " + std::to_string(pos) + ", the checksum is at byte " +

@@ -52,7 +52,8 @@ MAX_IMAGE_SIZE = 0xFFFF             # L is a u16
 
 FLAG_NAMES = 0x01                   # the names section is present
 FLAG_PROBS = 0x02                   # the probability section is present
-KNOWN_FLAGS = FLAG_NAMES | FLAG_PROBS   # any other bit set: refused (ErrorCode.LAYOUT)
+FLAG_ORDER = 0x04                   # the order section is present
+KNOWN_FLAGS = FLAG_NAMES | FLAG_PROBS | FLAG_ORDER   # any other bit set: refused (ErrorCode.LAYOUT)
 
 MAX_EVENTS = 0xFF
 MAX_SUPERVISORS = 0xFF
@@ -60,8 +61,11 @@ MAX_STATES = 0xFFFF
 MAX_TRANSITIONS = 0xFFFF
 STATE_WIDTHS = (1, 2)               # bytes of a target state number
 
-# Sections in image order; "probs" and "names" only with their flag.
-SECTIONS = ("controllable", "public", "supervisors", "states", "targets", "probs", "names")
+# Sections in image order; "probs", "names" and "order" only with their flag. "order" holds, for
+# each event (canonical index), its index in the source file's event list (one byte, below the
+# event count), then for each state (global index) its number in the source file (u16): what the
+# compatibility API's exact mode steps and reports by (docs/compat.md).
+SECTIONS = ("controllable", "public", "supervisors", "states", "targets", "probs", "names", "order")
 SUPERVISOR_RECORD = struct.Struct("<HHH")   # after the alphabet mask: first state, state count, initial state
 STATE_RECORD = struct.Struct("<H")          # after the defined mask: index of the first successor
 PROB = struct.Struct("<H")                  # Q15
@@ -125,14 +129,15 @@ def assemble(num_events: int, num_supervisors: int, num_states: int, num_transit
              sections: Dict[str, bytes]) -> bytes:
     """The image: header, ``sections`` ({name: bytes}) in SECTIONS order, CRC.
 
-    "probs" and "names" are optional and set their flags. :class:`ImageError` (LENGTH) when the
+    "probs", "names" and "order" are optional and set their flags. :class:`ImageError` (LENGTH) when the
     image would exceed MAX_IMAGE_SIZE."""
     body = b"".join(sections[name] for name in SECTIONS if name in sections)
     length = HEADER_SIZE + len(body) + CRC_SIZE
     if length > MAX_IMAGE_SIZE:
         raise ImageError(ErrorCode.LENGTH, "table image would be %d bytes, over the format's limit of %d"
                          % (length, MAX_IMAGE_SIZE))
-    flags = (FLAG_PROBS if "probs" in sections else 0) | (FLAG_NAMES if "names" in sections else 0)
+    flags = ((FLAG_PROBS if "probs" in sections else 0) | (FLAG_NAMES if "names" in sections else 0)
+             | (FLAG_ORDER if "order" in sections else 0))
     mask_bytes = (num_events + 7) // 8
     image = HEADER.pack(*Header(MAGIC, FORMAT_VERSION, flags, num_events, num_supervisors, num_states,
                                 num_transitions, state_width, mask_bytes, length)) + body
@@ -203,7 +208,8 @@ class Image:
     def __init__(self, raw: bytes, num_events: int, num_supervisors: int, controllable: int, public: int,
                  sup_alphabet: List[int], sup_first_state: List[int], sup_num_states: List[int],
                  sup_initial: List[int], state_defined: List[int], state_first: List[int], targets: List[int],
-                 probs: Optional[List[int]], names: Optional[List[str]]) -> None:
+                 probs: Optional[List[int]], names: Optional[List[str]], order: Optional[List[int]] = None,
+                 state_order: Optional[List[int]] = None) -> None:
         self.raw = raw
         self.num_events = num_events
         self.num_supervisors = num_supervisors
@@ -218,6 +224,8 @@ class Image:
         self.targets = targets
         self.probs = probs
         self.names = names
+        self.order = order              # source-file index of each event, or None
+        self.state_order = state_order  # source-file number of each (global) state, or None
 
     @classmethod
     def load(cls, path) -> "Image":
@@ -259,8 +267,11 @@ class Image:
         names = None
         if names_at:
             names = [at.take(at.take(1)[0]).decode("ascii") for _ in range(h.num_events)]
+        order = state_order = None
+        if h.flags & FLAG_ORDER:
+            order, state_order = at.numbers(h.num_events, 1), at.numbers(h.num_states, 2)
         image = cls(raw, h.num_events, h.num_supervisors, controllable, public, sup_alphabet, sup_first,
-                    sup_count, sup_init, state_defined, state_first, targets, probs, names)
+                    sup_count, sup_init, state_defined, state_first, targets, probs, names, order, state_order)
         image._check_indices(h)
         return image
 
@@ -330,6 +341,12 @@ def _check_sections(raw: bytes, h: Header) -> int:
                 raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
                                     % (event, name))
             pos += 1 + size
+    if h.flags & FLAG_ORDER:
+        if pos + h.num_events + 2 * h.num_states > end:
+            raise _layout_error("image order section runs past the checksum at byte %d" % end)
+        if max(raw[pos:pos + h.num_events]) >= h.num_events:
+            raise _layout_error("image order section names an event index beyond the %d events" % h.num_events)
+        pos += h.num_events + 2 * h.num_states
     if pos != end:
         raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
     return names_at

@@ -353,8 +353,9 @@ class SCT:
     def __init__(self, filename, exact=True, **options):
         image, file_events, file_states = _compat_image(filename)
         if exact and file_events is None:
-            raise ValueError("%s: exact mode needs the supervisor's event order, which only its YAML file gives "
-                             "(with the swarmvm compiler installed); give the .yaml, or exact=False" % filename)
+            raise ValueError("%s: exact mode needs the supervisor file's event order, which this image does not "
+                             "keep (made from automata, or with --no-names); give the supervisor.yaml, or exact=False"
+                             % filename)
         self.vm = VM(image, **options)
         self.exact = exact
         self._file_states = file_states if exact else None
@@ -425,16 +426,24 @@ class SCTPub(SCT):
 
 def _compat_image(filename):
     """(image, the file's bare event names in file order, each supervisor's file state numbers by
-    canonical state) for :class:`SCT`, the last two None without the YAML file. A YAML path is
-    compiled in memory when it exists and the swarmvm compiler can be imported; otherwise the
-    ``.svm`` beside it is read, as is a ``.svm`` path: an image has no file order."""
+    canonical state) for :class:`SCT`; the last two None when the image has no order section. A
+    YAML path is compiled in memory when it exists and the swarmvm compiler can be imported;
+    otherwise the ``.svm`` beside it is read, as is a ``.svm`` path."""
+    image = None
     if filename.endswith(".yaml") and os.path.exists(filename):
         try:
-            from swarmvm.pipeline import compile_spec, load
+            from swarmvm.pipeline import compile_inputs
         except ImportError:
-            return Image.load(filename[:-5] + ".svm"), None, None
-        spec = load([filename])
-        compiled = compile_spec(spec, [filename], name="sct")
-        return (Image.parse(compiled.image), list(spec.events),
-                [sup.input_states for sup in compiled.model.supervisors])
-    return Image.load(filename[:-5] + ".svm" if filename.endswith(".yaml") else filename), None, None
+            pass
+        else:
+            image = Image.parse(compile_inputs([filename], name="sct").ordered_image)
+    if image is None:
+        image = Image.load(filename[:-5] + ".svm" if filename.endswith(".yaml") else filename)
+    if image.order is None or image.names is None or image.state_order is None:
+        return image, None, None
+    file_events = [""] * image.num_events
+    for event, position in enumerate(image.order):
+        file_events[position] = image.names[event]
+    file_states = [image.state_order[first:first + count]
+                   for first, count in zip(image.sup_first_state, image.sup_num_states)]
+    return image, file_events, file_states

@@ -31,7 +31,8 @@ def _expected():
     """{NAME: value} in the C spelling (SVM_ prefix dropped)."""
     values = {"FORMAT_VERSION": F.FORMAT_VERSION, "MAGIC": int.from_bytes(F.MAGIC, "little"),
               "HEADER_SIZE": F.HEADER_SIZE, "CRC_SIZE": F.CRC_SIZE, "MIN_IMAGE_SIZE": F.MIN_IMAGE_SIZE,
-              "FLAG_NAMES": F.FLAG_NAMES, "FLAG_PROBS": F.FLAG_PROBS, "KNOWN_FLAGS": F.KNOWN_FLAGS}
+              "FLAG_NAMES": F.FLAG_NAMES, "FLAG_PROBS": F.FLAG_PROBS, "FLAG_ORDER": F.FLAG_ORDER,
+              "KNOWN_FLAGS": F.KNOWN_FLAGS}
     values.update({"AT_" + field.upper(): offset for field, offset in F.OFFSETS.items()})
     return values
 

@@ -194,14 +194,22 @@ def test_a_published_style_controller_runs_unchanged(vm):
     assert {"bid", "deliver", "return"} <= set(runs[0][0])
 
 
-def test_the_yaml_needs_no_pack_and_an_image_alone_refuses_exact_mode(vm, tmp_path):
-    source = Path(next(p for p in CORPUS if p.endswith("/energy_worker.yaml")))
-    (tmp_path / "supervisor.yaml").write_bytes(source.read_bytes())
-    sct = vm.SCT(str(tmp_path / "supervisor.yaml"))          # no supervisor.svm beside it
-    assert sct.exact and list(sct.EV) == PublishedStep(str(source), False).events
+def test_the_yaml_needs_no_pack_and_its_image_keeps_the_order(vm, tmp_path):
+    """SCT("x.yaml") compiles the file (no .svm needed); the image `swarmvm pack` writes from it
+    keeps the file's event order and state numbers, so exact mode runs from the image alone, as
+    on a robot without YAML support; an image without them refuses exact mode."""
+    from swarmvm import api
     from swarmvm.pipeline import compile_inputs
-    (tmp_path / "supervisor.svm").write_bytes(compile_inputs([str(source)]).image)
-    with pytest.raises(ValueError, match="exact mode needs the supervisor's event order"):
-        vm.SCT(str(tmp_path / "supervisor.svm"))
-    canonical = vm.SCT(str(tmp_path / "supervisor.svm"), exact=False)
+    source = next(p for p in CORPUS if p.endswith("/network_worker.yaml"))
+    (tmp_path / "supervisor.yaml").write_bytes(Path(source).read_bytes())
+    from_yaml = vm.SCT(str(tmp_path / "supervisor.yaml"))          # no supervisor.svm beside it
+    assert from_yaml.exact and list(from_yaml.EV) == PublishedStep(source, False).events
+    api.write_image([source], str(tmp_path / "robot.svm"))          # what `swarmvm pack` writes
+    runs = [run(sct, list(from_yaml.EV), lambda sct=sct: sct.run_step() or sct.last_events, 300)
+            for sct in (from_yaml, vm.SCT(str(tmp_path / "robot.svm")))]
+    assert runs[0] == runs[1]
+    (tmp_path / "bare.svm").write_bytes(compile_inputs([source], names=False).image)
+    with pytest.raises(ValueError, match="exact mode needs the supervisor file's event order"):
+        vm.SCT(str(tmp_path / "bare.svm"))
+    canonical = vm.SCT(str(tmp_path / "robot.svm"), exact=False)
     assert list(canonical.EV) == sorted(canonical.EV)       # events by name
