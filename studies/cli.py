@@ -193,7 +193,7 @@ def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate
                          commute_m=commute_m, speed_ms=speed, workers=workers, duration_s=duration)
     try:
         if strategy == "fixed":
-            result = dict(energy.fixed_bound(rates).as_dict(),
+            result = dict(dataclasses.asdict(energy.fixed_bound(rates)),
                           constant_supply_work=energy.constant_supply_bound(rates).work)
         else:
             mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
@@ -202,7 +202,7 @@ def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate
                      else energy.best_transfer_period(rates, mobile))
             if found is None or not found.feasible:
                 raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
-            result = dict(found.as_dict(), constant_supply_work=energy.constant_supply_bound(rates).work)
+            result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
     except ValueError as exc:
         click.echo("swarmvm: error: bounds energy: %s" % exc, err=True)
         sys.exit(2)

@@ -9,7 +9,7 @@ The models assume no interference and optimal paths, so they bound what a simula
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -45,9 +45,6 @@ class Bound:
     work: float
     efficiency: float
 
-    def as_dict(self) -> dict:
-        return asdict(self)
-
 
 def fixed_bound(r: Rates) -> Bound:
     """Equations 1-3: a worker leaves the base full, works until it has just the energy to come
@@ -68,7 +65,7 @@ def fixed_bound(r: Rates) -> Bound:
 def constant_supply_bound(r: Rates) -> Bound:
     """The fixed-charger bound with the energy supply at the work region (no commute): the
     reference the seed measures mobile chargers against."""
-    return fixed_bound(Rates(**{**asdict(r), "commute_m": 0.0}))
+    return fixed_bound(replace(r, commute_m=0.0))
 
 
 @dataclass(frozen=True)
@@ -96,9 +93,6 @@ class MobileBound:
     duty_cycle: float
     work: float
     efficiency: float
-
-    def as_dict(self) -> dict:
-        return asdict(self)
 
 
 def mobile_bound(w: Rates, m: MobileRates, transfer_s: float) -> MobileBound:
