@@ -14,7 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "sct.h"
+#include "swarmvm.hpp"
+
+using swarmvm::SCT;      // the canonical step (sct.h, the ARGoS drop-in, steps exactly)
+using swarmvm::SCTPub;
 
 namespace {
 

@@ -16,6 +16,7 @@
 #include <functional>
 #include <iterator>
 #include <istream>
+#include <algorithm>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -186,6 +187,8 @@ struct Image {
     std::vector<std::uint16_t> targets;
     std::vector<std::uint16_t> probs;   // empty without the PROBS section
     std::vector<std::string> names;     // empty without the NAMES section
+    std::vector<std::uint8_t> order;          // ORDER section: source-file index of each event
+    std::vector<std::uint16_t> state_order;   // ... and source-file number of each state
 
     bool has_probs() const { return !probs.empty(); }
     bool has_names() const { return !names.empty(); }
@@ -390,6 +393,10 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
             const std::uint8_t* at = in.take(len);
             image.names.emplace_back(reinterpret_cast<const char*>(at), len);
         }
+    }
+    if (flags & kFlagOrder) {
+        for (unsigned e = 0; e < n_events; ++e) image.order.push_back(in.u8());
+        for (unsigned g = 0; g < n_states; ++g) image.state_order.push_back(in.u16());
     }
     // Cross-references: the step indexes with them, so an inconsistent image is refused here.
     const Mask events = Mask::first(n_events);
@@ -634,6 +641,11 @@ public:
         return fired_;
     }
 
+    // The pieces of a step, for the compatibility layer's exact mode (BasicSCT): the check of
+    // an event (false without one) and an event's transitions followed by its action.
+    bool poll(unsigned event) { return checks_[event] && checks_[event](data_[event]); }
+    void fire(unsigned event) { apply(event); }
+
     const Image& image() const { return image_; }
     const Options& options() const { return options_; }
     const std::vector<std::uint16_t>& states() const { return states_; }
@@ -857,12 +869,32 @@ inline std::string image_path_for(const std::string& path) {
 //   sct->add_callback(this, "EV_y", NULL, &C::check, NULL);   // uncontrollable
 //   sct->run_step();
 // Unlike the published VM, an unknown event name throws UnknownEvent (it never means event 0).
+// How a compatibility object steps (docs/compat.md): canonical, swarmvm's step; exact, the
+// published SCT's (the file's event order, every check before any transition, each action after
+// its transition, the k-th enabled controllable event in file order with k = rng.next() % n);
+// exact_public_first, the published SCTPub's (public events applied before private ones).
+enum class Step { canonical, exact, exact_public_first };
+
 template <class Rng = XorShift32>
 class BasicSCT {
 public:
-    explicit BasicSCT(const std::string& path, Options options = Options(), Rng rng = Rng())
-        : vm_(Image::load(image_path_for(path)), std::move(options), std::move(rng)) {
-        for (unsigned e = 0; e < vm_.image().num_events; ++e) events[vm_.image().event_name(e)] = e;
+    // Exact steps need the image's ORDER section (`swarmvm pack` writes it from a
+    // supervisor.yaml); without it they throw std::invalid_argument.
+    explicit BasicSCT(const std::string& path, Options options = Options(), Rng rng = Rng(),
+                      Step step = Step::canonical)
+        : vm_(Image::load(image_path_for(path)), std::move(options), std::move(rng)), step_(step) {
+        const Image& image = vm_.image();
+        const unsigned n = image.num_events;
+        if (step_ != Step::canonical && (image.order.size() != n || !image.has_names())) {
+            throw std::invalid_argument(path + ": the exact step needs the supervisor file's event order, which this "
+                                        "image does not keep: write it with swarmvm pack from the supervisor.yaml");
+        }
+        canonical_.resize(n);
+        for (unsigned e = 0; e < n; ++e) canonical_[step_ == Step::canonical ? e : image.order[e]] = e;
+        for (unsigned i = 0; i < n; ++i) {
+            events[image.event_name(canonical_[i])] = i;
+            if (!image.controllable.test(canonical_[i])) inputs_.push_back(i);
+        }
     }
     virtual ~BasicSCT() = default;
 
@@ -877,40 +909,74 @@ public:
         vm_.bind(index(event), typename BasicVM<Rng>::Action(), [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); },
                  data);
     }
-    // Uncontrollable event with both a check and an action (e.g. turn LEDs on when it occurs).
+    // Both a check and an action (e.g. turn LEDs on when an uncontrollable event occurs); for a
+    // controllable event the check is never called, as in the published SCT.
     template <class C, class R>
     void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), R (C::*ci)(void*), void* data) {
-        vm_.bind(index(event), [p, clbk](void* d) { (p->*clbk)(d); },
-                 [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); }, data);
+        const unsigned e = index(event);
+        typename BasicVM<Rng>::Check check;
+        if (!vm_.image().controllable.test(e)) check = [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); };
+        vm_.bind(e, [p, clbk](void* d) { (p->*clbk)(d); }, std::move(check), data);
     }
 
-    // One VM step; public uncontrollable events are processed first, as SCTPub does.
-    virtual void run_step() { vm_.step(); }
+    virtual void run_step() {
+        if (step_ == Step::canonical) {
+            vm_.step();
+            return;
+        }
+        std::vector<unsigned> occurred, later;   // file indices; later: private ones under SCTPub
+        for (unsigned i : inputs_) {
+            if (!vm_.poll(canonical_[i])) continue;
+            const bool defer = step_ == Step::exact_public_first && !vm_.image().public_events.test(canonical_[i]);
+            (defer ? later : occurred).push_back(i);
+        }
+        occurred.insert(occurred.end(), later.begin(), later.end());
+        for (unsigned i : occurred) vm_.fire(canonical_[i]);
+        std::vector<unsigned> enabled;
+        for (unsigned e : vm_.enabled()) enabled.push_back(file_index(e));
+        if (enabled.empty()) return;
+        std::sort(enabled.begin(), enabled.end());
+        vm_.fire(canonical_[enabled[vm_.rng().next() % enabled.size()]]);
+    }
 
-    // The current state of every supervisor, in supervisor order, joined by ','.
+    // Every supervisor's state in supervisor order: canonically "3,0,2"; in an exact step the
+    // published string, the file's state numbers from 1: "sup:[4,1,3]".
     virtual std::string get_current_state_string() {
-        std::string out;
-        for (std::size_t s = 0; s < vm_.states().size(); ++s) out += (s ? "," : "") + std::to_string(vm_.states()[s]);
-        return out;
+        const Image& image = vm_.image();
+        std::string out = step_ == Step::canonical ? "" : "sup:[";
+        for (std::size_t s = 0; s < vm_.states().size(); ++s) {
+            const unsigned state = vm_.states()[s];
+            out += (s ? "," : "") + std::to_string(step_ == Step::canonical
+                                                         ? state
+                                                         : image.state_order[image.sup_first_state[s] + state] + 1u);
+        }
+        return step_ == Step::canonical ? out : out + "]";
     }
 
     BasicVM<Rng>& vm() { return vm_; }
 
-    // Event name ("EV_x") -> index, as the published SCT's public map.
+    // Event name ("EV_x") -> index (the file's in an exact step, else the image's), as the
+    // published SCT's public map.
     std::map<std::string, std::size_t> events;
 
 protected:
     unsigned index(const std::string& event) const {
         auto found = events.find(event);
         if (found == events.end()) throw UnknownEvent("no event named '" + event + "' in this supervisor");
-        return static_cast<unsigned>(found->second);
+        return canonical_[found->second];
+    }
+    unsigned file_index(unsigned canonical) const {
+        return static_cast<unsigned>(std::find(canonical_.begin(), canonical_.end(), canonical) - canonical_.begin());
     }
 
     BasicVM<Rng> vm_;
+    Step step_;
+    std::vector<unsigned> canonical_;   // index a caller sees -> the image's event index
+    std::vector<unsigned> inputs_;      // the uncontrollable events, by the caller's index
 };
 
-// The published SCTPub processes public events before private ones; in swarmvm that order
-// is the semantics of every step, so SCTPub is SCT under its published name.
+// The published SCTPub processes public events before private ones; in swarmvm's canonical
+// step that order is the semantics of every step, so canonically SCTPub is SCT.
 template <class Rng = XorShift32>
 class BasicSCTPub : public BasicSCT<Rng> {
 public:

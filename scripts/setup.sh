@@ -12,7 +12,7 @@ python="${SETUP_PYTHON:-python3}"
 
 packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm libsimavr-dev make
   g++ clang cmake pkg-config cppcheck python3-venv graphviz
-  xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev"
+  xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev libyaml-cpp-dev"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
