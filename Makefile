@@ -21,6 +21,7 @@ test: setup typecheck
 
 typecheck: setup
 	$(PYTHON) -m mypy
+	$(PYTHON) -m ruff check generator runtime_py studies tests benchmarks firmware scripts
 
 # The fast part of the suite (no emulator, nothing slow): under a minute.
 test-quick: setup

@@ -32,7 +32,6 @@ from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.render import write_outputs  # noqa: E402
 from swarmvm.naming import callback_stem  # noqa: E402
 from swarmvm.runtime import python_vm  # noqa: E402
-from checkout import FIRMWARE  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
@@ -273,7 +272,7 @@ def main(outdir):
           "twice as %d chunks (message type 0x%02x), one per kilolib tick: ticks %d..%d with chunk 3 corrupted, "
           "then ticks %d..%d intact" % (SUPERVISOR_A.stem, SUPERVISOR_B.stem, len(image_b), len(good),
                                         program.chunk_type, bad[0][0], bad[-1][0], good[0][0], good[-1][0]))
-    shown = set(before[:3] + before[-3:] + after[:3] + after[-1:]) | {l for l in lines if not l[:1].isdigit()}
+    shown = set(before[:3] + before[-3:] + after[:3] + after[-1:]) | {line for line in lines if not line[:1].isdigit()}
     gap = False
     for line in lines:
         if line in shown:

@@ -181,7 +181,8 @@ def draw_all(results, out, tau: float = 20.0) -> List[Path]:
         written.append(figure17(plt, frames, out / "uav_fig17_accuracy.png", tau))
     if "least-confident" in labels:
         written.append(figure18(plt, frames, out / "uav_fig18_soh_maps.png", tau))
-    thresholds = sorted((l for l in labels if l.startswith("threshold")), key=lambda l: abs(int(l[10:-1]) - 80))
+    thresholds = sorted((label for label in labels if label.startswith("threshold")),
+                        key=lambda label: abs(int(label[10:-1]) - 80))
     if thresholds and "least-confident" in labels:       # against the best threshold of the seed, 80 %
         written.append(figure16(plt, frames, out / "uav_fig19_threshold.png", ["least-confident", thresholds[0]]))
     if (trials["pretrain_weeks"] > 0).any():

@@ -83,7 +83,7 @@ def test_user_edited_controller_is_kept(tmp_path):
 
 def test_drifted_controller_is_named_and_a_public_override_is_not_stale(tmp_path):
     out = gen("network_worker", tmp_path)
-    header, source = out / "network_worker_controller.h", out / "network_worker_controller.cpp"
+    header = out / "network_worker_controller.h"
     model = compile_inputs([str(CORPUS / "network_worker.yaml")]).model
     public = next(e for i, e in enumerate(model.events) if model.public[i] and model.controllable[i])
     private = re.search(r"bool (Check_\w+)\(\) override;", header.read_text()).group(1)

@@ -50,7 +50,10 @@ def test_bid_window_is_the_first_tick_the_decision_turns_yes():
     for drone in range(3):
         for order, distance in enumerate((2000.0, 5000.0)):
             t = start[drone, order]
-            yes = lambda tick: fleet.scores(drone, distance, 3.0, measure(charged(params, 20.0, tick - 100))) >= 0
+
+            def yes(tick, drone=drone, distance=distance):
+                return fleet.scores(drone, distance, 3.0, measure(charged(params, 20.0, tick - 100))) >= 0
+
             if t == NEVER:
                 assert not yes(10 ** 9)                    # not even when full
             else:
