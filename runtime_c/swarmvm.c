@@ -675,12 +675,12 @@ static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, co
         vm->bindings[e].action = 0;
         vm->bindings[e].check = 0;
         vm->bindings[e].data = 0;
-        moved[e >> 3] |= (uint8_t)(1u << (e & 7u));
+        moved[e >> 3] = (uint8_t)(moved[e >> 3] | (1u << (e & 7u)));
         to = map[e];
         while (to < limit && map[to] != 0xFFu && !(moved[to >> 3] & (1u << (to & 7u)))) {
             svm_binding_t held = vm->bindings[to];
             vm->bindings[to] = carry;
-            moved[to >> 3] |= (uint8_t)(1u << (to & 7u));
+            moved[to >> 3] = (uint8_t)(moved[to >> 3] | (1u << (to & 7u)));
             carry = held;
             to = map[to];
         }
@@ -1022,7 +1022,7 @@ static uint8_t uniform_index(uint32_t r, uint8_t count)
 /* Whether event `e` (< E) is in the byte mask `bytes`. */
 static uint8_t has_event(const uint8_t *bytes, uint8_t e)
 {
-    return (uint8_t)((bytes[e >> 3] >> (e & 7u)) & 1u);
+    return (uint8_t)(((unsigned)bytes[e >> 3] >> (e & 7u)) & 1u);
 }
 
 /* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. */

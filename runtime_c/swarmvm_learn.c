@@ -242,7 +242,7 @@ uint16_t svl_exp_neg_q15(uint32_t x)
     if (x >= EXP_CUTOFF) {
         return 0;
     }
-    y = ((x >> 4) * LOG2E_Q14) >> 10;
+    y = (uint32_t)(((x >> 4) * LOG2E_Q14) >> 10);
     whole = y >> 16;
     frac = y & 0xFFFFUL;
     j = frac >> 12;
@@ -254,7 +254,7 @@ uint16_t svl_policy_size(const svm_vm_t *vm)
 {
     uint8_t e, width = 0;
     for (e = 0; e < svm_num_events(vm); e++) {
-        width += svm_is_controllable(vm, e) ? 1 : 0;
+        width = (uint8_t)(width + (svm_is_controllable(vm, e) ? 1u : 0u));
     }
     return (uint16_t)(svm_num_states(vm) * width);
 }
@@ -330,7 +330,8 @@ uint8_t svl_policy_choose(svm_vm_t *vm, const uint8_t *enabled, uint8_t count, v
         p->probs[s] = (uint16_t)(((uint32_t)weights[s] * (uint32_t)Q15_ONE) / total);
     }
     p->pending = count;
-    return events[i];
+    /* i < count: the weights are positive and sum to total > pick. */
+    return events[i];  // cppcheck-suppress uninitvar
 }
 
 uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
@@ -345,7 +346,7 @@ uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
     p->baseline += floor_shift(reward - p->baseline, p->baseline_shift);
     step9 = floor_shift(floor_shift(advantage, 8) * (int32_t)p->rate_q16, 15);
     for (i = 0; i < p->pending; i++) {
-        int32_t diff = (i == p->chosen ? Q15_ONE : 0) - (int32_t)p->probs[i];
+        int32_t diff = (int32_t)(i == p->chosen ? Q15_ONE : 0) - (int32_t)p->probs[i];
         int32_t delta = floor_shift(step9 * diff, 8);
         for (s = 0; s < p->num_supervisors; s++) {
             int32_t *cell = &p->theta[p->rows[s] + p->ranks[i]];

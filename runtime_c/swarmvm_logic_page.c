@@ -8,7 +8,8 @@
 extern const uint8_t __svm_logic_start[];
 extern const uint8_t __svm_logic_end[];
 #define PAGE_START (__svm_logic_start)
-#define PAGE_SIZE ((uint16_t)(__svm_logic_end - __svm_logic_start))
+/* The linker's two symbols are distinct objects: their distance is taken between addresses. */
+#define PAGE_SIZE ((uint16_t)((uintptr_t)__svm_logic_end - (uintptr_t)__svm_logic_start))
 #endif
 
 #define NAME_CAPACITY 48u
@@ -49,7 +50,10 @@ int svm_logic_page_load(svm_vm_t *vm, const uint8_t *compiled, uint16_t compiled
             (void)svm_event_name(vm, e, name, sizeof name);
             own = svm_event_index(&names, name);
         }
-        to_compiled[e] = own < 0 ? (uint8_t)SVM_LOGIC_NO_EVENT : (uint8_t)own;
+        to_compiled[e] = (uint8_t)SVM_LOGIC_NO_EVENT;
+        if (own >= 0) {
+            to_compiled[e] = (uint8_t)own;
+        }
     }
     return result;
 }
