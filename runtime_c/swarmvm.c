@@ -648,9 +648,9 @@ static uint8_t is_bound(const svm_binding_t *b)
  * once, whether its moves form a chain or a cycle. */
 static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
 {
-    uint8_t map[SVM_MAX_EVENTS];
-    uint8_t moved[SVM_MASK_BYTES];
-    uint8_t e, cap = vm->bindings_cap;
+    uint8_t map[SVM_MAX_EVENTS] = {0};     /* zeroed only for gcc's flow analysis: entries past */
+    uint8_t moved[SVM_MASK_BYTES];          /* `limit` are never read (-Wmaybe-uninitialized at */
+    uint8_t e, cap = vm->bindings_cap;      /* SVM_MAX_EVENTS=1 on arm-none-eabi-gcc)            */
     uint8_t limit = vm->num_events < cap ? vm->num_events : cap;
     for (e = 0; e < SVM_MASK_BYTES; e++) {
         moved[e] = 0;
