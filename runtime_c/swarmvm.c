@@ -356,15 +356,24 @@ static SVM_INLINE uint8_t cursor_next(cursor_t *c)
 /* CRC-16/MCRF4XX a byte at a time, without a table and without branches: the byte-wise form
  * of the reflected CCITT polynomial that avr-libc's _crc_ccitt_update also uses (8 shifts and
  * xors per byte instead of 8 conditional steps). */
+static SVM_INLINE uint16_t crc_byte(uint16_t crc, uint8_t byte)
+{
+    uint8_t d = (uint8_t)(byte ^ (uint8_t)crc);
+    d = (uint8_t)(d ^ (uint8_t)(d << 4));
+    return (uint16_t)((((uint16_t)d << 8) | (crc >> 8)) ^ (uint8_t)(d >> 4) ^ ((uint16_t)d << 3));
+}
+
+uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
+{
+    return crc_byte(crc, byte);
+}
+
 static uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
-    uint16_t crc = 0xFFFFu;
+    uint16_t crc = SVM_CRC16_INIT;
     uint16_t i;
-    uint8_t d;
     for (i = 0; i < length; i++) {
-        d = (uint8_t)(rd_raw(image, source, i) ^ (uint8_t)crc);
-        d = (uint8_t)(d ^ (uint8_t)(d << 4));
-        crc = (uint16_t)((((uint16_t)d << 8) | (crc >> 8)) ^ (uint8_t)(d >> 4) ^ ((uint16_t)d << 3));
+        crc = crc_byte(crc, rd_raw(image, source, i));
     }
     return crc;
 }

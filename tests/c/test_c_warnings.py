@@ -21,7 +21,7 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Wconversion", "-Werror", "-pedantic"
 AVR = ["-mmcu=atmega328p"]
 KILOBOT = c_harness.KILOBOT_FLAGS
 ARM = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16"]
-CORE = [RUNTIME_C / "swarmvm.c", RUNTIME_C / "swarmvm_sct.c"]
+CORE = [RUNTIME_C / "swarmvm.c", RUNTIME_C / "swarmvm_sct.c", RUNTIME_C / "swarmvm_store.c"]
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 
 COMPILERS = {
