@@ -150,3 +150,41 @@ def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
     # runtime's last step), and setup never signalled a refused image.
     assert run.end[:1] == (40,) and run.ram >= 39
     assert RED not in [colour for tick, colour in run.leds if tick > run.rx[0].tick]
+
+
+def corrupt_compiled_in_image(tables):
+    """Flip one bit of a byte in the middle of the image array of a generated ``*_tables.c``
+    (the build still compiles: only the checksum can tell)."""
+    text = tables.read_text()
+    start = text.index("_image[")
+    values = [m for m in re.finditer(r"0x([0-9a-f]{2})", text) if m.start() > start]
+    middle = values[len(values) // 2]
+    flipped = "0x%02x" % (int(middle.group(1), 16) ^ 0x10)
+    tables.write_text(text[:middle.start()] + flipped + text[middle.end():])
+
+
+def test_a_corrupted_compiled_in_image_is_refused_at_start_up_on_the_host(tmp_path):
+    gen(EXAMPLE, "c", tmp_path, "energy_worker")
+    corrupt_compiled_in_image(tmp_path / "energy_worker_tables.c")
+    subprocess.run(["make", "-s"], cwd=tmp_path, check=True, capture_output=True)
+    run = subprocess.run([str(tmp_path / "energy_worker"), "10"], capture_output=True, text=True, timeout=10)
+    assert run.returncode == 1 and run.stdout == ""
+    assert run.stderr == ("%s: the compiled-in table image was refused (swarmvm error 4: its checksum does not "
+                          "match, the image is corrupted)\n" % (tmp_path / "energy_worker"))
+
+
+@pytest.mark.emulator
+def test_a_corrupted_compiled_in_image_halts_the_kilobot_in_red(tmp_path):
+    """On the Kilobot board in simavr: the refused image shows red from set-up on, and the VM,
+    holding no image, fires nothing: the LED never changes again (a running controller shows
+    each fired event's colour, test_kilobot_application_fits_and_runs) and nothing is sent."""
+    board_or_skip()
+    name = "energy_worker"
+    gen(EXAMPLE, "kilobot", tmp_path, name)
+    corrupt_compiled_in_image(tmp_path / (name + "_tables.c"))
+    subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), name + ".elf"], cwd=tmp_path, check=True,
+                   capture_output=True)
+    run = board.run(tmp_path / (name + ".elf"), ticks=40)
+    assert run.end[:1] == (40,)
+    colours = [colour for _, colour in run.leds]      # kilolib's start-up colours, then set-up's
+    assert RED in colours and colours[colours.index(RED):] == [RED] and run.tx == []
