@@ -188,3 +188,39 @@ def test_a_corrupted_compiled_in_image_halts_the_kilobot_in_red(tmp_path):
     assert run.end[:1] == (40,)
     colours = [colour for _, colour in run.leds]      # kilolib's start-up colours, then set-up's
     assert RED in colours and colours[colours.index(RED):] == [RED] and run.tx == []
+
+
+# Names that gave C which did not compile (issue 12): an event `stream` (the Kilobot stream hook
+# was <model>_on_stream, the action of such an event), `x` beside `received_x`, and a model
+# name that is not ASCII (avr-gcc refuses such identifiers; it becomes ouvri_re).
+AWKWARD = """num_events: 4
+num_supervisors: 1
+events: [ EV_stream,EV__stream,EV_x,EV_received_x ]
+ev_controllable: [ 1,0,1,0 ]
+ev_shared: [ 1,1,0,0 ]
+sup_events: [ [ 1,1,1,1 ] ]
+sup_init_state: [ 0 ]
+sup_current_state: [ 0 ]
+sup_data_pos: [ 0 ]
+sup_data: [ 4,EV_stream,0,0,EV__stream,0,0,EV_x,0,0,EV_received_x,0,0 ]
+"""
+
+
+@pytest.mark.parametrize("stem", ["stream", "ouvrière"])
+def test_awkward_names_compile_for_the_kilobot_and_the_host(stem, tmp_path):
+    model = tmp_path / (stem + ".yaml")
+    model.write_text(AWKWARD)
+    name = "ouvri_re" if stem == "ouvrière" else stem
+    for stream in (False, True):
+        out = tmp_path / ("kilobot_stream" if stream else "kilobot")
+        subprocess.run(["swarmvm", "gen", str(model), "--target", "kilobot", "-o", str(out)], check=True,
+                       capture_output=True)
+        build = subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
+                                *(["STREAM=1"] if stream else []), name + ".elf"], cwd=out, capture_output=True, text=True)
+        assert build.returncode == 0 and (out / (name + ".elf")).is_file(), build.stderr
+    host = tmp_path / "c"
+    subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(host)], check=True, capture_output=True)
+    build = subprocess.run(["make", "-s", "CFLAGS=%s -O2 -DSVM_STEPS=20" % " ".join(STRICT)], cwd=host,
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr
+    assert subprocess.run([str(host / name)], timeout=10).returncode == 0
