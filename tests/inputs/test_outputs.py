@@ -84,3 +84,10 @@ def test_pack_onto_a_symbolic_link_is_one_line(tmp_path):
     assert status == 2 and output == (
         "swarmvm: error: %s: -o: is a symbolic link: swarmvm does not write through or over one\n" % (tmp_path / "link.svm"))
     assert (tmp_path / "link.svm").is_symlink() and (tmp_path / "real.svm").read_bytes() == b"mine"
+
+
+def test_pack_into_a_missing_folder_makes_it(tmp_path):
+    """A missing parent of -o is made (it once gave a traceback), and nothing else is left there."""
+    target = tmp_path / "a" / "b" / "x.svm"
+    status, output = run("pack", EXAMPLE, "-o", str(target))
+    assert status == 0 and target.read_bytes()[:4] == b"SVMI" and every_file(tmp_path / "a") == ["b", "b/x.svm"]
