@@ -361,14 +361,11 @@ uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
 /* CRC-16/MCRF4XX (the image checksum) over the little-endian bytes of 32-bit words. */
 static uint16_t crc_words(const uint32_t *words, uint16_t count)
 {
-    uint16_t crc = 0xFFFF, i;
-    uint8_t b, bit;
+    uint16_t crc = SVM_CRC16_INIT, i;
+    uint8_t b;
     for (i = 0; i < count; i++) {
         for (b = 0; b < 4; b++) {
-            crc ^= (uint8_t)(words[i] >> (8 * b));
-            for (bit = 0; bit < 8; bit++) {
-                crc = (crc & 1) ? (uint16_t)((crc >> 1) ^ 0x8408) : (uint16_t)(crc >> 1);
-            }
+            crc = svm_crc16_update(crc, (uint8_t)(words[i] >> (8 * b)));
         }
     }
     return crc;
