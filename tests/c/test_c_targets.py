@@ -11,6 +11,7 @@ import pytest
 
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference
+from corrupted import corrupt_compiled_in_image
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
 
@@ -150,17 +151,6 @@ def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
     # runtime's last step), and setup never signalled a refused image.
     assert run.end[:1] == (40,) and run.ram >= 39
     assert RED not in [colour for tick, colour in run.leds if tick > run.rx[0].tick]
-
-
-def corrupt_compiled_in_image(tables):
-    """Flip one bit of a byte in the middle of the image array of a generated ``*_tables.c``
-    (the build still compiles: only the checksum can tell)."""
-    text = tables.read_text()
-    start = text.index("_image[")
-    values = [m for m in re.finditer(r"0x([0-9a-f]{2})", text) if m.start() > start]
-    middle = values[len(values) // 2]
-    flipped = "0x%02x" % (int(middle.group(1), 16) ^ 0x10)
-    tables.write_text(text[:middle.start()] + flipped + text[middle.end():])
 
 
 def test_a_corrupted_compiled_in_image_is_refused_at_start_up_on_the_host(tmp_path):

@@ -15,6 +15,7 @@ from conformance import qemu_harness
 from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS
 from checkout import ROOT
+from corrupted import corrupt_compiled_in_image
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
@@ -119,3 +120,15 @@ def test_make_builds_an_image_for_every_corpus_supervisor():
                          ["/nonexistent/capbot/%s.elf" % p.rsplit("/", 1)[1][:-5] for p in SUPERVISORS],
                          check=True, capture_output=True, text=True).stdout
     assert out.count("--target capbot") == len(SUPERVISORS)
+
+
+def test_a_corrupted_compiled_in_image_is_refused_in_qemu(tmp_path):
+    """The application linked by mk/capbot.mk, its compiled-in image with one bit flipped: QEMU
+    shows the refusal with SVM_ERR_CRC (4) and no step, exit status 1."""
+    elf = build_with_make(tmp_path, "energy_worker")
+    corrupt_compiled_in_image(tmp_path / "capbot" / "gen" / "energy_worker" / "src" / "energy_worker_tables.c")
+    elf.unlink()
+    build_with_make(tmp_path, "energy_worker")
+    status, stdout, stderr = qemu_harness.run(elf, timeout=30)
+    assert status == 1 and stdout == ""
+    assert stderr == "compiled-in energy_worker: refused (swarmvm error 4)\n"
