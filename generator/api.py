@@ -187,6 +187,8 @@ def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
             rows.append(fp.measure(path))
         except ELFError as exc:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
+        except OSError as exc:
+            raise fp.FootprintError("%s: cannot read file (%s)" % (path, exc.strerror))
     return rows
 
 

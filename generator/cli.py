@@ -133,7 +133,7 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 
 
 @main.command()
-@click.argument("elfs", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
+@click.argument("elfs", nargs=-1, required=True, type=click.Path())
 @click.option("--json", "json_path", type=click.Path(dir_okay=False), help="Also write the report as JSON.")
 @click.option("--kilobot-flash", default=28672, show_default=True, type=click.IntRange(0),
               help="Flash a Kilobot image may use (bytes below the bootloader).")
