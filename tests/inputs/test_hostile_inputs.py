@@ -70,3 +70,12 @@ def test_a_script_that_is_not_utf8_is_one_line(tmp_path):
     example = CORPUS / "openswarm" / "energy_worker.yaml"
     result = CliRunner().invoke(main, ["trace", str(example), "--script", str(script)])
     assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: not UTF-8 text (byte 13)\n" % script
+
+
+def test_a_script_that_is_a_folder_is_one_line(tmp_path):
+    example = CORPUS / "openswarm" / "energy_worker.yaml"
+    for command in (["trace", str(example), "--script", str(tmp_path)], ["synth", "--script", str(tmp_path), "-o",
+                                                                          str(tmp_path / "x.yaml"), str(example)]):
+        result = CliRunner().invoke(main, command)
+        assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: cannot read file (Is a directory)\n" % (
+            tmp_path), command
