@@ -21,6 +21,7 @@ INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
+ENABLED_MEMO_LIMIT = 1 << 16    # state combinations whose enabled set a VM remembers
 
 
 def callback_stem(name):
@@ -138,10 +139,22 @@ class VM:
                            for e in range(image.num_events)]
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
-        self.successors = [[(sup, [moves.get(e) for moves in self.moves[sup]]) for sup in self.event_sups[e]]
+        self.successors = [tuple((sup, [moves.get(e) for moves in self.moves[sup]]) for sup in self.event_sups[e])
                            for e in range(image.num_events)]
-        self._polls = None
+        self._plan = None
+        # The supervisors that can disable a controllable event, each with the controllable
+        # events it allows in each of its states: the enabled set is the AND over these alone.
+        everything = (1 << image.num_events) - 1
+        self._gates = tuple((sup, masks) for sup, masks in enumerate([m & image.controllable for m in allowed]
+                                                                     for allowed in self.allowed)
+                            if min(masks) != image.controllable & everything)
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
+        # When the product of the state counts is small, the step remembers the enabled events
+        # of each combination of states it meets (``tuple(states)`` -> events): one lookup.
+        product = 1
+        for count in image.sup_num_states:
+            product *= count
+        self._enabled_at = {} if product <= ENABLED_MEMO_LIMIT else None
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
         self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
@@ -191,7 +204,7 @@ class VM:
             self.checks[index] = check
         self.data[index] = data
         self._bindings_checked = False
-        self._polls = None
+        self._plan = None
 
     def bind_controller(self, controller):
         """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
@@ -228,23 +241,66 @@ class VM:
         """Controllable events enabled by every supervisor, in canonical order."""
         return _bits(self._enabled_mask())
 
+    def _enabled_now(self):
+        """The enabled events at the current states, a tuple in canonical order: remembered per
+        combination of states when there are few (see _install), else one AND per gate."""
+        memo, states = self._enabled_at, self.states
+        if memo is not None:
+            key = tuple(states)
+            enabled = memo.get(key)
+            if enabled is not None:
+                return enabled
+        mask = self.image.controllable
+        for sup, masks in self._gates:
+            mask &= masks[states[sup]]
+        enabled = self._enabled_sets.get(mask)
+        if enabled is None:
+            enabled = self._enabled_sets[mask] = tuple(_bits(mask))
+        if memo is not None:
+            memo[key] = enabled
+        return enabled
+
+    def _bound(self):
+        """What the step needs of the bindings, rebuilt after a bind or a load: the checks to
+        poll as (event, check, data) in check order, and per event its (action, data) or None."""
+        plan = self._plan
+        if plan is None:
+            checks, actions, data = self.checks, self.actions, self.data
+            polls = tuple((e, checks[e], data.get(e)) for e in self.input_order if e in checks)
+            acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
+            plan = self._plan = (polls, acts)
+        return plan
+
+    def _fire(self, events, acts):
+        """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
+        counts a violation), then the event's action from ``acts`` (the bound plan's) runs. A
+        callback may rebind or set ``states``: what it changed holds for the events after it."""
+        states, successors = self.states, self.successors
+        for event in events:
+            for sup, successor in successors[event]:
+                target = successor[states[sup]]
+                if target is None:
+                    self._violation(event, sup)
+                    states = self.states
+                else:
+                    states[sup] = target
+            act = acts[event]
+            if act is not None:
+                try:
+                    act[0](act[1])
+                except Exception as exc:
+                    raise CallbackError(self.image.event_name(event), "action", exc) from exc
+                states, acts = self.states, self._bound()[1]
+
     def _apply(self, event):
-        states = self.states
-        for sup, successor in self.successors[event]:
-            target = successor[states[sup]]
-            if target is None:
-                if self.violations != MAX_VIOLATIONS:
-                    self.violations += 1
-                if self.on_violation is not None:
-                    self.on_violation(event, sup)
-            else:
-                states[sup] = target
-        action = self.actions.get(event)
-        if action is not None:
-            try:
-                action(self.data.get(event))
-            except Exception as exc:
-                raise CallbackError(self.image.event_name(event), "action", exc) from exc
+        """Fire one event (the conformance tests re-derive enabled sets with it)."""
+        self._fire((event,), self._bound()[1])
+
+    def _violation(self, event, sup):
+        if self.violations != MAX_VIOLATIONS:
+            self.violations += 1
+        if self.on_violation is not None:
+            self.on_violation(event, sup)
 
     def _weight(self, event):
         weight = Q15_ONE
@@ -280,31 +336,36 @@ class VM:
             if self.unbound_checks():
                 raise UnboundEvents(self.unbound_checks())
             self._bindings_checked = True
-        polls = self._polls
-        if polls is None:
-            polls = self._polls = [(e, self.checks[e], self.data.get(e)) for e in self.input_order if e in self.checks]
-        polled = -1     # the event whose check runs: named if it raises
-        try:
-            true = [event for event, check, data in polls if (polled := event) >= 0 and check(data)]
-        except Exception as exc:
-            raise CallbackError(self.image.event_name(polled), "check", exc) from exc
-        if self.inputs == "level":
-            fired = true
-        else:
-            previous, current = self.previous, sum(1 << event for event in true)
-            fired = [event for event in true if not previous >> event & 1]
-            self.previous = current
-        for event in fired:
-            self._apply(event)
-        if fired and self.control == "if-quiet":
-            return fired
-        mask = self._enabled_mask()
-        if mask:
-            enabled = self._enabled_sets.get(mask)
-            if enabled is None:     # a set of enabled events met for the first time
-                enabled = self._enabled_sets[mask] = tuple(_bits(mask))
-            choice = self.select(enabled)
-            self._apply(choice)
+        polls, acts = self._plan or self._bound()
+        fired = []
+        if polls:
+            true = fired.append
+            try:
+                for event, check, data in polls:
+                    if check(data):
+                        true(event)
+            except Exception as exc:
+                raise CallbackError(self.image.event_name(event), "check", exc) from exc
+            if self.inputs == "edge":
+                previous, current = self.previous, sum(1 << event for event in fired)
+                fired = [event for event in fired if not previous >> event & 1]
+                self.previous = current
+            if fired:
+                self._fire(fired, acts)
+                if self.control == "if-quiet":
+                    return fired
+        memo = self._enabled_at
+        enabled = memo.get(tuple(self.states)) if memo is not None else None
+        if enabled is None:
+            enabled = self._enabled_now()
+        if enabled:
+            if self.policy != "uniform":
+                choice = self.select(enabled)
+            elif len(enabled) == 1:
+                choice = enabled[0]
+            else:
+                choice = enabled[self.rng.below(len(enabled))]
+            self._fire((choice,), (self._plan or self._bound())[1])
             fired.append(choice)
         return fired
 
