@@ -21,7 +21,7 @@ INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
-ENABLED_MEMO_LIMIT = 1 << 16    # state combinations whose enabled set a VM remembers
+ENABLED_MEMO_LIMIT = 2048       # state combinations whose enabled set a VM remembers
 
 
 def callback_stem(name):
@@ -86,6 +86,21 @@ def _bits(mask):
     return out
 
 
+class _Option:
+    """A run option of :class:`VM` (inputs, control, policy, strict) that the step reads from
+    its plan (VM._bound) rather than per step: setting one makes the VM plan again."""
+
+    def __set_name__(self, owner, name):
+        self.slot = "_" + name
+
+    def __get__(self, vm, owner=None):
+        return self if vm is None else getattr(vm, self.slot)
+
+    def __set__(self, vm, value):
+        setattr(vm, self.slot, value)
+        vm._plan = None
+
+
 class VM:
     """The virtual machine: current states, inputs, generator, callbacks; ``step()`` evolves it.
 
@@ -93,6 +108,8 @@ class VM:
     ``policy`` uniform|first|weighted|learned (learned takes ``learner``, an object with
     ``choose(vm, enabled)`` returning one of ``enabled``), ``seed`` for the generator,
     ``priority`` (event names, highest first) for ``first``."""
+
+    inputs, control, policy, strict = _Option(), _Option(), _Option(), _Option()
 
     def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
                  priority=None, learner=None, on_violation=None, strict=False):
@@ -149,12 +166,10 @@ class VM:
                                                                      for allowed in self.allowed)
                             if min(masks) != image.controllable & everything)
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
-        # When the product of the state counts is small, the step remembers the enabled events
-        # of each combination of states it meets (``tuple(states)`` -> events): one lookup.
-        product = 1
-        for count in image.sup_num_states:
-            product *= count
-        self._enabled_at = {} if product <= ENABLED_MEMO_LIMIT else None
+        # The enabled events of each combination of states met (``tuple(states)`` -> events):
+        # one lookup where a run keeps to a few combinations (see _enabled_now).
+        self._enabled_at = {}
+        self._met_once = set()      # combinations met once, not yet in _enabled_at
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
         self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
@@ -242,65 +257,84 @@ class VM:
         return _bits(self._enabled_mask())
 
     def _enabled_now(self):
-        """The enabled events at the current states, a tuple in canonical order: remembered per
-        combination of states when there are few (see _install), else one AND per gate."""
-        memo, states = self._enabled_at, self.states
-        if memo is not None:
-            key = tuple(states)
-            enabled = memo.get(key)
-            if enabled is not None:
-                return enabled
+        """(the enabled events at the current states, a tuple in canonical order; the states
+        after each of them, or None). A combination of states met for the first time gets its
+        events (one AND per gate); met again, also the states after each event (an enabled
+        event cannot violate: every supervisor that has it defines it here), and the pair is
+        remembered, so that a run that keeps to a few combinations steps by lookups. Memory
+        stays bounded: at ENABLED_MEMO_LIMIT combinations the memo is dropped."""
+        states, memo, met = self.states, self._enabled_at, self._met_once
         mask = self.image.controllable
         for sup, masks in self._gates:
             mask &= masks[states[sup]]
         enabled = self._enabled_sets.get(mask)
         if enabled is None:
             enabled = self._enabled_sets[mask] = tuple(_bits(mask))
-        if memo is not None:
-            memo[key] = enabled
-        return enabled
+        if memo is None:
+            return enabled, None
+        key = tuple(states)
+        if len(met) + len(memo) >= ENABLED_MEMO_LIMIT:
+            self._enabled_at = None
+            met.clear()
+            return enabled, None
+        if key not in met:
+            met.add(key)
+            return enabled, None
+        afters = []
+        for event in enabled:
+            after = list(states)
+            for sup, successor in self.successors[event]:
+                after[sup] = successor[after[sup]]
+            afters.append(tuple(after))
+        met.discard(key)
+        entry = memo[key] = (enabled, tuple(afters))
+        return entry
 
     def _bound(self):
-        """What the step needs of the bindings, rebuilt after a bind or a load: the checks to
-        poll as (event, check, data) in check order, and per event its (action, data) or None."""
+        """What the step needs of the bindings and options, rebuilt after a bind, a load or a
+        change of option: the checks to poll as (event, check, data) in check order, per event
+        its (action, data) or None, then whether inputs are edges, the control waits for a quiet
+        step, the policy is uniform, and the VM is strict."""
         plan = self._plan
         if plan is None:
             checks, actions, data = self.checks, self.actions, self.data
             polls = tuple((e, checks[e], data.get(e)) for e in self.input_order if e in checks)
             acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
-            plan = self._plan = (polls, acts)
+            plan = self._plan = (polls, acts, self.inputs == "edge", self.control == "if-quiet",
+                                 self.policy == "uniform", bool(self.strict))
         return plan
 
     def _fire(self, events, acts):
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
-        counts a violation), then the event's action from ``acts`` (the bound plan's) runs. A
-        callback may rebind or set ``states``: what it changed holds for the events after it."""
+        counts a violation), then its action from ``acts`` (the bound plan's) runs. A callback
+        may rebind or set ``states``: what it changed holds for the events after it."""
         states, successors = self.states, self.successors
         for event in events:
             for sup, successor in successors[event]:
                 target = successor[states[sup]]
-                if target is None:
-                    self._violation(event, sup)
-                    states = self.states
-                else:
+                if target is not None:
                     states[sup] = target
+                    continue
+                if self.violations != MAX_VIOLATIONS:
+                    self.violations += 1
+                if self.on_violation is not None:
+                    self.on_violation(event, sup)
+                    states, acts = self.states, self._bound()[1]
             act = acts[event]
             if act is not None:
-                try:
-                    act[0](act[1])
-                except Exception as exc:
-                    raise CallbackError(self.image.event_name(event), "action", exc) from exc
+                self._act(event, act)
                 states, acts = self.states, self._bound()[1]
+
+    def _act(self, event, act):
+        """Run an event's bound (action, data); CallbackError if the action raises."""
+        try:
+            act[0](act[1])
+        except Exception as exc:
+            raise CallbackError(self.image.event_name(event), "action", exc) from exc
 
     def _apply(self, event):
         """Fire one event (the conformance tests re-derive enabled sets with it)."""
         self._fire((event,), self._bound()[1])
-
-    def _violation(self, event, sup):
-        if self.violations != MAX_VIOLATIONS:
-            self.violations += 1
-        if self.on_violation is not None:
-            self.on_violation(event, sup)
 
     def _weight(self, event):
         weight = Q15_ONE
@@ -332,11 +366,12 @@ class VM:
 
     def step(self):
         """One VM step; returns the events that fired, in order (indices)."""
-        if self.strict and not self._bindings_checked:
+        plan = self._plan or self._bound()
+        polls, acts, edge, quiet, uniform, strict = plan
+        if strict and not self._bindings_checked:
             if self.unbound_checks():
                 raise UnboundEvents(self.unbound_checks())
             self._bindings_checked = True
-        polls, acts = self._plan or self._bound()
         fired = []
         if polls:
             true = fired.append
@@ -346,26 +381,33 @@ class VM:
                         true(event)
             except Exception as exc:
                 raise CallbackError(self.image.event_name(event), "check", exc) from exc
-            if self.inputs == "edge":
+            if self._plan is not plan:      # a check bound something
+                acts = self._bound()[1]
+            if edge:
                 previous, current = self.previous, sum(1 << event for event in fired)
                 fired = [event for event in fired if not previous >> event & 1]
                 self.previous = current
             if fired:
                 self._fire(fired, acts)
-                if self.control == "if-quiet":
+                if quiet:
                     return fired
-        memo = self._enabled_at
-        enabled = memo.get(tuple(self.states)) if memo is not None else None
-        if enabled is None:
-            enabled = self._enabled_now()
+                acts = (self._plan or self._bound())[1]
+        states, memo = self.states, self._enabled_at
+        entry = memo.get(tuple(states)) if memo is not None else None
+        enabled, afters = entry or self._enabled_now()
         if enabled:
-            if self.policy != "uniform":
+            if not uniform:
                 choice = self.select(enabled)
-            elif len(enabled) == 1:
-                choice = enabled[0]
+                k = enabled.index(choice)
             else:
-                choice = enabled[self.rng.below(len(enabled))]
-            self._fire((choice,), (self._plan or self._bound())[1])
+                k = 0 if len(enabled) == 1 else self.rng.below(len(enabled))
+                choice = enabled[k]
+            if afters is None:
+                self._fire((choice,), acts)
+            else:
+                states[:] = afters[k]
+                if acts[choice] is not None:
+                    self._act(choice, acts[choice])
             fired.append(choice)
         return fired
 
