@@ -10,7 +10,7 @@ literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "c
 """
 
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
-           "SCT", "SCTPub", "format_trace_line", "replay"]
+           "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
 
 import os
 import random
@@ -417,20 +417,25 @@ def format_trace_line(step, names, states, violations):
     return "%d %s %s %d" % (step, ",".join(names) or "-", ",".join(str(s) for s in states), violations)
 
 
-def replay(vm, rows):
-    """Run ``vm`` from reset on an event script (a list of sets of event indices, one per step)
-    and return the canonical trace lines. This is the reference conformance harness: the C and
-    C++ harnesses do exactly this and must print the same lines."""
+def replay_lines(vm, rows):
+    """Run ``vm`` from reset on an event script (an iterable of sets of event indices, one per
+    step), producing the canonical trace lines one step at a time (constant memory). This is
+    the reference conformance harness: the C and C++ harnesses do exactly this and must print
+    the same lines."""
     script: dict = {"row": set()}
     for event in vm.input_order:
         vm.bind(event, check=lambda _data, event=event: event in script["row"])
     vm.reset()
-    lines = []
+    name = vm.image.event_name
     for number, row in enumerate(rows, 1):
         script["row"] = row
         fired = vm.step()
-        lines.append(format_trace_line(number, [vm.image.event_name(e) for e in fired], vm.states, vm.violations))
-    return lines
+        yield format_trace_line(number, [name(e) for e in fired], vm.states, vm.violations)
+
+
+def replay(vm, rows):
+    """The lines of :func:`replay_lines`, as a list."""
+    return list(replay_lines(vm, rows))
 
 
 class SCT:
