@@ -136,32 +136,40 @@ class VM:
         uncontrollable = ((1 << image.num_events) - 1) & ~image.controllable
         # Check order: public uncontrollable events first, then private ones, each by name.
         self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
-        self.not_alphabet = [((1 << image.num_events) - 1) & ~a for a in image.sup_alphabet]
-        self.allowed, self.moves, self.weights = [], [], []
-        for sup in range(image.num_supervisors):
-            first = image.sup_first_state[sup]
-            allowed, moves, weights = [], [], []
-            for local in range(image.sup_num_states[sup]):
-                g = first + local
-                events = _bits(image.state_defined[g])
-                base = image.state_first[g]
-                allowed.append(image.state_defined[g] | self.not_alphabet[sup])
-                moves.append({e: image.targets[base + r] for r, e in enumerate(events)})
-                if image.probs is not None:
-                    weights.append({e: image.probs[base + r] for r, e in enumerate(events)})
-            self.allowed.append(allowed)
-            self.moves.append(moves)
-            self.weights.append(weights)
-        self.event_sups = [[s for s in range(image.num_supervisors) if image.sup_alphabet[s] >> e & 1]
-                           for e in range(image.num_events)]
+        everything = (1 << image.num_events) - 1
+        self.not_alphabet = [everything & ~a for a in image.sup_alphabet]
+        self.event_sups = [[] for _ in range(image.num_events)]
+        for sup, alphabet in enumerate(image.sup_alphabet):
+            for e in _bits(alphabet):
+                self.event_sups[e].append(sup)
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
-        self.successors = [tuple((sup, [moves.get(e) for moves in self.moves[sup]]) for sup in self.event_sups[e])
-                           for e in range(image.num_events)]
+        self.allowed, self.weights, self.successors = [], [], [[] for _ in range(image.num_events)]
+        self._moves = None
+        events_of: dict = {}    # a state's defined mask -> its events (states share masks)
+        targets, probs = image.targets, image.probs
+        for sup, first, count, not_alphabet in zip(range(image.num_supervisors), image.sup_first_state,
+                                                   image.sup_num_states, self.not_alphabet):
+            defined = image.state_defined[first:first + count]
+            self.allowed.append([mask | not_alphabet for mask in defined])
+            columns = {e: [None] * count for e in _bits(image.sup_alphabet[sup])}
+            weights = []
+            for local, (mask, base) in enumerate(zip(defined, image.state_first[first:first + count])):
+                events = events_of.get(mask)
+                if events is None:
+                    events = events_of[mask] = _bits(mask)
+                successors = targets[base:base + len(events)]
+                if probs is not None:
+                    weights.append(dict(zip(events, probs[base:base + len(events)])))
+                for e, target in zip(events, successors):
+                    columns[e][local] = target
+            self.weights.append(weights)
+            for e, column in columns.items():
+                self.successors[e].append((sup, column))
+        self.successors = [tuple(pairs) for pairs in self.successors]
         self._plan = None
         # The supervisors that can disable a controllable event, each with the controllable
         # events it allows in each of its states: the enabled set is the AND over these alone.
-        everything = (1 << image.num_events) - 1
         self._gates = tuple((sup, masks) for sup, masks in enumerate([m & image.controllable for m in allowed]
                                                                      for allowed in self.allowed)
                             if min(masks) != image.controllable & everything)
@@ -173,6 +181,20 @@ class VM:
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
         self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+
+    @property
+    def moves(self):
+        """Per supervisor, per state: {event: successor}, built from ``successors`` on first use
+        (the step does not use it)."""
+        if self._moves is None:
+            moves = [[{} for _ in range(count)] for count in self.image.sup_num_states]
+            for event, pairs in enumerate(self.successors):
+                for sup, column in pairs:
+                    for local, target in enumerate(column):
+                        if target is not None:
+                            moves[sup][local][event] = target
+            self._moves = moves
+        return self._moves
 
     def load(self, image):
         """Swap in a new table image between two steps; states restart from its initial states.
