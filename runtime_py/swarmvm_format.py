@@ -184,12 +184,17 @@ def _numbers(raw: bytes, pos: int, count: int, width: int) -> List[int]:
 def _records(raw: bytes, pos: int, count: int, mask_bytes: int, fields: struct.Struct) -> tuple:
     """``count`` records of a mask then ``fields`` at ``pos``, decoded in one pass: (the masks
     as ints, then each field's values), each a list, and the position after them."""
-    record = struct.Struct("<%ds%s" % (mask_bytes, fields.format.lstrip("<")))
+    record = _RECORDS.get((mask_bytes, fields))
+    if record is None:
+        record = _RECORDS[mask_bytes, fields] = struct.Struct("<%ds%s" % (mask_bytes, fields.format.lstrip("<")))
     end = pos + count * record.size
     rows = list(record.iter_unpack(raw[pos:end]))
     masks = [int.from_bytes(row[0], "little") for row in rows]
-    columns = tuple([row[i] for row in rows] for i in range(1, 1 + len(fields.unpack(bytes(fields.size)))))
+    columns = tuple([row[i] for row in rows] for i in range(1, len(fields.format)))
     return (masks,) + columns + (end,)
+
+
+_RECORDS: Dict[tuple, struct.Struct] = {}     # (mask bytes, fields) -> the record's struct
 
 
 class Image:
@@ -240,7 +245,7 @@ class Image:
                                 % (h.num_events, h.mask_bytes, h.state_width, h.num_supervisors))
         if h.flags & ~KNOWN_FLAGS:
             raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (h.flags, KNOWN_FLAGS))
-        names_at = _check_sections(raw, h)
+        names = _check_sections(raw, h)
         m = h.mask_bytes
         pos = HEADER_SIZE + 2 * m
         controllable = int.from_bytes(raw[HEADER_SIZE:HEADER_SIZE + m], "little")
@@ -254,12 +259,8 @@ class Image:
         if h.flags & FLAG_PROBS:
             probs = _numbers(raw, pos, h.num_transitions, PROB.size)
             pos += h.num_transitions * PROB.size
-        names = None
-        if names_at:
-            names = []
-            for _ in range(h.num_events):
-                names.append(raw[pos + 1:pos + 1 + raw[pos]].decode("ascii"))
-                pos += 1 + raw[pos]
+        if names is not None:
+            pos += h.num_events + sum(map(len, names))
         order = state_order = None
         if h.flags & FLAG_ORDER:
             order, state_order = _numbers(raw, pos, h.num_events, 1), _numbers(raw, pos + h.num_events, h.num_states, 2)
@@ -323,9 +324,9 @@ class Image:
         return self.names.index(bare)
 
 
-def _check_sections(raw: bytes, h: Header) -> int:
-    """Where the names section starts (0: none), once the sections are known to end exactly at
-    the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
+def _check_sections(raw: bytes, h: Header) -> Optional[List[str]]:
+    """The event names (None: no names section), once the sections are known to end exactly
+    at the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
     m, end = h.mask_bytes, len(raw) - CRC_SIZE
     pos = (HEADER_SIZE + 2 * m + h.num_supervisors * (m + SUPERVISOR_RECORD.size)
            + h.num_states * (m + STATE_RECORD.size) + h.num_transitions * h.state_width)
@@ -333,9 +334,9 @@ def _check_sections(raw: bytes, h: Header) -> int:
         pos += h.num_transitions * PROB.size
     if pos > end:
         raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
-    names_at = 0
+    names = None
     if h.flags & FLAG_NAMES:
-        names_at = pos
+        names = []
         for event in range(h.num_events):
             if pos >= end:
                 raise _layout_error("image names section ends at event %d of %d" % (event, h.num_events))
@@ -346,6 +347,7 @@ def _check_sections(raw: bytes, h: Header) -> int:
             if not NAME_CHARS.issuperset(name):
                 raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
                                     % (event, name))
+            names.append(name.decode("ascii"))
             pos += 1 + size
     if h.flags & FLAG_ORDER:
         if pos + h.num_events + 2 * h.num_states > end:
@@ -355,4 +357,4 @@ def _check_sections(raw: bytes, h: Header) -> int:
         pos += h.num_events + 2 * h.num_states
     if pos != end:
         raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
-    return names_at
+    return names

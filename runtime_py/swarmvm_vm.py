@@ -121,8 +121,8 @@ class VM:
             raise ValueError("policy must be one of %s" % (POLICIES,))
         if policy == "learned" and learner is None:
             raise ValueError("policy 'learned' needs a learner")
-        self.inputs, self.control, self.policy = inputs, control, policy
-        self.seed, self.learner, self.on_violation, self.strict = seed, learner, on_violation, strict
+        self._inputs, self._control, self._policy, self._strict = inputs, control, policy, strict
+        self.seed, self.learner, self.on_violation = seed, learner, on_violation
         self._priority = priority
         self.actions, self.checks, self.data = {}, {}, {}
         self._install(image if isinstance(image, Image) else Image.parse(image))
