@@ -316,14 +316,14 @@ class VM:
         """What the step needs of the bindings and options, rebuilt after a bind, a load or a
         change of option: the checks to poll as (event, check, data) in check order, per event
         its (action, data) or None, then whether inputs are edges, the control waits for a quiet
-        step, the policy is uniform, and the VM is strict."""
+        step, the policy is uniform, the VM is strict, and there is a controllable event."""
         plan = self._plan
         if plan is None:
             checks, actions, data = self.checks, self.actions, self.data
             polls = tuple((e, checks[e], data.get(e)) for e in self.input_order if e in checks)
             acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
             plan = self._plan = (polls, acts, self.inputs == "edge", self.control == "if-quiet",
-                                 self.policy == "uniform", bool(self.strict))
+                                 self.policy == "uniform", bool(self.strict), bool(self.image.controllable))
         return plan
 
     def _fire(self, events, acts):
@@ -389,7 +389,7 @@ class VM:
     def step(self):
         """One VM step; returns the events that fired, in order (indices)."""
         plan = self._plan or self._bound()
-        polls, acts, edge, quiet, uniform, strict = plan
+        polls, acts, edge, quiet, uniform, strict, chooses = plan
         if strict and not self._bindings_checked:
             if self.unbound_checks():
                 raise UnboundEvents(self.unbound_checks())
@@ -414,6 +414,8 @@ class VM:
                 if quiet:
                     return fired
                 acts = (self._plan or self._bound())[1]
+        if not chooses:
+            return fired
         states, memo = self.states, self._enabled_at
         entry = memo.get(tuple(states)) if memo is not None else None
         enabled, afters = entry or self._enabled_now()
