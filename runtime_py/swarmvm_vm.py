@@ -22,6 +22,7 @@ CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
 ENABLED_MEMO_LIMIT = 2048       # state combinations whose enabled set a VM remembers
+MEMO_PROBE = 256                # combinations met once after which a memo that does not pay is dropped
 
 
 def callback_stem(name):
@@ -319,8 +320,10 @@ class VM:
         after each of them, or None). A combination of states met for the first time gets its
         events (one AND per gate); met again, also the states after each event (an enabled
         event cannot violate: every supervisor that has it defines it here), and the pair is
-        remembered, so that a run that keeps to a few combinations steps by lookups. Memory
-        stays bounded: at ENABLED_MEMO_LIMIT combinations the memo is dropped."""
+        remembered, so that a run that keeps to a few combinations steps by lookups. The memo
+        is dropped at ENABLED_MEMO_LIMIT combinations (memory stays bounded), or earlier when
+        of MEMO_PROBE combinations met under a quarter were met again (a product too big to
+        pay off: its lookups would only cost)."""
         states, memo, met = self.states, self._enabled_at, self._met_once
         mask = self.image.controllable
         for sup, masks in self._gates:
@@ -331,7 +334,7 @@ class VM:
         if memo is None:
             return enabled, None
         key = tuple(states)
-        if len(met) + len(memo) >= ENABLED_MEMO_LIMIT:
+        if len(met) + len(memo) >= ENABLED_MEMO_LIMIT or (len(met) >= MEMO_PROBE and 4 * len(memo) < len(met)):
             self._enabled_at = None
             met.clear()
             return enabled, None
