@@ -87,19 +87,25 @@ def _bits(mask):
     return out
 
 
-def _poller(polls, event_name):
+def _poller(polls, event_name=None):
     """The checks' poll, for one plan: a function that calls each check of ``polls`` ((event,
     check, data), in check order) once and returns the events whose check was true, a new list
-    in that order; CallbackError naming the event if a check raises. Written out check by check
-    (the checks and their data are its default arguments) because a loop over the checks cost
-    a sixth of a step on models with many inputs; the code, which depends on the events alone,
-    is compiled once per sequence of events (_POLLERS)."""
+    in that order. If a check raises: CallbackError naming the event (``event_name`` gives its
+    name), or with no ``event_name`` the exception as it is (the published VM's way, for
+    SCT's exact mode). Written out check by check (the checks and their data are its default
+    arguments) because a loop over the checks cost a sixth of a step on models with many
+    inputs; the code, which depends on the events alone, is compiled once (_POLLERS)."""
     events = tuple(event for event, _, _ in polls)
-    make = _POLLERS.get(events)
+    wrap = event_name is not None
+    make = _POLLERS.get((events, wrap))
     if make is None:
         args = "".join("c%d=checks[%d], d%d=datas[%d], " % (i, i, i, i) for i in range(len(events)))
         calls = "".join("            e = %d\n            if c%d(d%d):\n                add(%d)\n" % (event, i, i, event)
                         for i, event in enumerate(events))
+        handler = ("        except Exception as exc:\n"
+                   "            raise CallbackError(event_name(e), 'check', exc) from exc\n" if wrap else
+                   "        finally:\n"
+                   "            pass\n")
         source = ("def make(checks, datas, event_name, CallbackError):\n"
                   "    def poll(%s):\n"
                   "        fired = []\n"
@@ -107,19 +113,18 @@ def _poller(polls, event_name):
                   "        e = -1\n"
                   "        try:\n%s"
                   "            pass\n"
-                  "        except Exception as exc:\n"
-                  "            raise CallbackError(event_name(e), 'check', exc) from exc\n"
+                  "%s"
                   "        return fired\n"
-                  "    return poll\n" % (args, calls))
+                  "    return poll\n" % (args, calls, handler))
         namespace: dict = {}
         exec(source, namespace)
         if len(_POLLERS) >= MAX_POLLERS:
             _POLLERS.clear()
-        make = _POLLERS[events] = namespace["make"]
+        make = _POLLERS[events, wrap] = namespace["make"]
     return make([c for _, c, _ in polls], [d for _, _, d in polls], event_name, CallbackError)
 
 
-_POLLERS: dict = {}     # sequence of events -> the compiled maker of their poll
+_POLLERS: dict = {}     # (sequence of events, wrap) -> the compiled maker of their poll
 MAX_POLLERS = 64
 
 
@@ -325,6 +330,9 @@ class VM:
         of MEMO_PROBE combinations met under a quarter were met again (a product too big to
         pay off: its lookups would only cost)."""
         states, memo, met = self.states, self._enabled_at, self._met_once
+        entry = memo.get(tuple(states)) if memo is not None else None
+        if entry is not None:
+            return entry
         mask = self.image.controllable
         for sup, masks in self._gates:
             mask &= masks[states[sup]]
@@ -449,7 +457,7 @@ class VM:
         if not chooses:
             return fired
         states, memo = self.states, self._enabled_at
-        entry = memo.get(tuple(states)) if memo is not None else None
+        entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's lookup, inline
         enabled, afters = entry or self._enabled_now()
         if enabled:
             if not uniform:
@@ -532,12 +540,12 @@ class SCT:
         self.num_supervisors = image.num_supervisors
         self.last_events, self.input_buffer = [], []
         if exact:
-            order = range(len(self._canonical))
-            inputs = [i for i in order if not self.ev_controllable[i]]
-            public = [i for i in inputs if image.public >> self._canonical[i] & 1]
-            self._checks_order = inputs
-            self._apply_order = public + [i for i in inputs if i not in public] if self._public_first else inputs
-            self._file_index = {c: i for i, c in enumerate(self._canonical)}
+            self._checks_order = [i for i in range(len(self._canonical)) if not self.ev_controllable[i]]
+            self._file_index = [0] * len(self._canonical)
+            for i, c in enumerate(self._canonical):
+                self._file_index[c] = i
+            self._exact_plan = None
+            self._in_file_order: dict = {}
 
     @property
     def sup_current_state(self):
@@ -559,22 +567,45 @@ class SCT:
             self.last_events = fired
             self.input_buffer = [e for e in fired if not self.ev_controllable[e]]
             return
-        vm, canonical = self.vm, self._canonical
-        true = set()
-        for i in self._checks_order:
-            check = vm.checks.get(canonical[i])
-            if check is not None and check(vm.data.get(canonical[i])):
-                true.add(i)
-        fired = [i for i in self._apply_order if i in true]
-        for i in fired:
-            vm._apply(canonical[i])
+        vm = self.vm
+        vm_plan = vm._plan or vm._bound()
+        plan = self._exact_plan
+        if plan is None or plan[0] is not vm_plan:
+            plan = self._plan_exact(vm_plan)
+        true = plan[1]()
+        if self._public_first and true:
+            public = vm.image.public
+            true = [c for c in true if public >> c & 1] + [c for c in true if not public >> c & 1]
+        file_index = self._file_index
+        fired = [file_index[c] for c in true]
+        acts = vm_plan[1]
+        if true:
+            vm._fire(true, acts)
+            acts = (vm._plan or vm._bound())[1]
         self.input_buffer = list(fired)
-        enabled = sorted(self._file_index[c] for c in vm.enabled())
+        enabled, afters = vm._enabled_now()
         if enabled:
-            choice = enabled[random.randint(0, 1000000000) % len(enabled)]
-            vm._apply(canonical[choice])
+            order = self._in_file_order.get(enabled)
+            if order is None:
+                order = self._in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))
+            choice, k = order[random.randint(0, 1000000000) % len(order)]
+            if afters is None:
+                vm._fire((enabled[k],), acts)
+            else:
+                vm.states[:] = afters[k]
+                if acts[enabled[k]] is not None:
+                    vm._act(enabled[k], acts[enabled[k]])
             fired.append(choice)
         self.last_events = fired
+
+    def _plan_exact(self, vm_plan):
+        """The exact step's poll of the checks in file order (raising as the published VM),
+        for the VM's current plan ``vm_plan``."""
+        vm, canonical = self.vm, self._canonical
+        polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
+                 for i in self._checks_order if canonical[i] in vm.checks]
+        self._exact_plan = (vm_plan, _poller(polls))
+        return self._exact_plan
 
     def get_events(self):
         return self.EV, self.ev_controllable
