@@ -502,6 +502,24 @@ def replay(vm, rows):
     return list(replay_lines(vm, rows))
 
 
+_RANDINT = random.randint
+
+
+def _published_draw():
+    """``random.randint(0, 1000000000)``, the published VM's draw, from the global generator.
+    While ``random.randint`` is the standard one, CPython's own draw is made directly, bit for
+    bit (randint -> randrange -> Random._randbelow_with_getrandbits: getrandbits(30) until at
+    most 10^9), without randint's three Python-level calls, a third of a small model's exact
+    step; tests/python/test_sct_exact.py checks the two agree."""
+    if random.randint != _RANDINT:
+        return random.randint(0, 1000000000)
+    getrandbits = random.getrandbits
+    draw = getrandbits(30)
+    while draw > 1000000000:
+        draw = getrandbits(30)
+    return draw
+
+
 class SCT:
     """Nadzoru 2's Python VM API over :class:`VM`, so published controllers run unchanged: swap
     ``from sct import SCT`` for ``from swarmvm_vm import SCT`` (docs/compat.md).
@@ -573,29 +591,31 @@ class SCT:
         if plan is None or plan[0] is not vm_plan:
             plan = self._plan_exact(vm_plan)
         true = plan[1]()
-        if self._public_first and true:
-            public = vm.image.public
-            true = [c for c in true if public >> c & 1] + [c for c in true if not public >> c & 1]
         file_index = self._file_index
-        fired = [file_index[c] for c in true]
-        acts = vm_plan[1]
         if true:
-            vm._fire(true, acts)
-            acts = (vm._plan or vm._bound())[1]
-        self.input_buffer = list(fired)
-        enabled, afters = vm._enabled_now()
-        if enabled:
-            order = self._in_file_order.get(enabled)
-            if order is None:
-                order = self._in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))
-            choice, k = order[random.randint(0, 1000000000) % len(order)]
-            if afters is None:
-                vm._fire((enabled[k],), acts)
-            else:
-                vm.states[:] = afters[k]
-                if acts[enabled[k]] is not None:
-                    vm._act(enabled[k], acts[enabled[k]])
-            fired.append(choice)
+            if self._public_first:
+                public = vm.image.public
+                true = [c for c in true if public >> c & 1] + [c for c in true if not public >> c & 1]
+            fired = [file_index[c] for c in true]
+            vm._fire(true, (vm._plan or vm._bound())[1])
+            self.input_buffer = list(fired)
+        else:
+            fired, self.input_buffer = [], []
+        if vm_plan[6]:      # a controllable event to choose
+            enabled, afters = vm._enabled_now()
+            if enabled:
+                order = self._in_file_order.get(enabled)
+                if order is None:
+                    order = self._in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))
+                choice, k = order[_published_draw() % len(order)]
+                acts = (vm._plan or vm._bound())[1]
+                if afters is None:
+                    vm._fire((enabled[k],), acts)
+                else:
+                    vm.states[:] = afters[k]
+                    if acts[enabled[k]] is not None:
+                        vm._act(enabled[k], acts[enabled[k]])
+                fired.append(choice)
         self.last_events = fired
 
     def _plan_exact(self, vm_plan):
