@@ -180,13 +180,14 @@ class VM:
         self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
         everything = (1 << image.num_events) - 1
         self.not_alphabet = [everything & ~a for a in image.sup_alphabet]
-        self.event_sups = [[] for _ in range(image.num_events)]
+        self.event_sups: list = [[] for _ in range(image.num_events)]
         for sup, alphabet in enumerate(image.sup_alphabet):
             for e in _bits(alphabet):
                 self.event_sups[e].append(sup)
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
-        self.allowed, self.weights, self.successors = [], [], [[] for _ in range(image.num_events)]
+        self.allowed, self.weights = [], []
+        pairs_of: list = [[] for _ in range(image.num_events)]
         self._moves = None
         events_of: dict = {}    # a state's defined mask -> its events (states share masks)
         targets, probs = image.targets, image.probs
@@ -207,8 +208,8 @@ class VM:
                     columns[e][local] = target
             self.weights.append(weights)
             for e, column in columns.items():
-                self.successors[e].append((sup, column))
-        self.successors = [tuple(pairs) for pairs in self.successors]
+                pairs_of[e].append((sup, column))
+        self.successors = [tuple(pairs) for pairs in pairs_of]
         self._plan = None
         # The supervisors that can disable a controllable event, each with the controllable
         # events it allows in each of its states: the enabled set is the AND over these alone.
@@ -218,7 +219,7 @@ class VM:
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
         # The enabled events of each combination of states met (``tuple(states)`` -> events):
         # one lookup where a run keeps to a few combinations (see _enabled_now).
-        self._enabled_at = {}
+        self._enabled_at: dict | None = {}
         self._met_once = set()      # combinations met once, not yet in _enabled_at
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
@@ -229,7 +230,7 @@ class VM:
         """Per supervisor, per state: {event: successor}, built from ``successors`` on first use
         (the step does not use it)."""
         if self._moves is None:
-            moves = [[{} for _ in range(count)] for count in self.image.sup_num_states]
+            moves: list = [[{} for _ in range(count)] for count in self.image.sup_num_states]
             for event, pairs in enumerate(self.successors):
                 for sup, column in pairs:
                     for local, target in enumerate(column):
