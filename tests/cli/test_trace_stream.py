@@ -12,9 +12,9 @@ from checkout import EXAMPLE
 from swarmvm import api
 from swarmvm.errors import MAX_BYTES
 from swarmvm.runtime import python_vm
-from swarmvm.script import parse_script
+from swarmvm.script import MAX_LINE_BYTES, MAX_STEPS, parse_script
 
-STEPS = 10 ** 7
+STEPS = MAX_STEPS
 PEAK_LIMIT_KB = 100 * 1024
 
 
@@ -79,3 +79,22 @@ def test_ten_million_steps_trace_in_constant_memory(tmp_path):
     assert first.startswith("1 ") and last.startswith("1000001 "), (first, last, proc.stderr.read())
     print("peak resident set %d kB" % peak)
     assert peak < PEAK_LIMIT_KB, "peak resident set %d kB" % peak
+
+
+def test_a_line_over_the_line_limit_is_refused_before_any_output(tmp_path):
+    script = tmp_path / "s.txt"
+    script.write_text("-\n" * 10 + "EV_" + "x" * MAX_LINE_BYTES + "\n")
+    result = subprocess.run([sys.executable, "-m", "swarmvm", "trace", str(EXAMPLE), "--script", str(script)],
+                            capture_output=True, text=True)
+    assert result.returncode == 2 and result.stdout == ""
+    assert result.stderr == "swarmvm: error: %s: line 11: line over the %d-byte limit\n" % (script, MAX_LINE_BYTES)
+
+
+@pytest.mark.slow
+def test_a_script_over_ten_million_steps_is_refused_before_any_output(tmp_path):
+    script = tmp_path / "s.txt"
+    script.write_text("# one step too many\n" + "-\n" * (MAX_STEPS + 1))
+    result = subprocess.run([sys.executable, "-m", "swarmvm", "trace", str(EXAMPLE), "--script", str(script)],
+                            capture_output=True, text=True)
+    assert result.returncode == 2 and result.stdout == ""
+    assert result.stderr == "swarmvm: error: %s: script of over %d steps\n" % (script, MAX_STEPS)
