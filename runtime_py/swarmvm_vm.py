@@ -223,7 +223,8 @@ class VM:
         self._met_once = set()      # combinations met once, not yet in _enabled_at
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
-        self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+        self.rank = ([listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+                     if listed else list(range(image.num_events)))
 
     @property
     def moves(self):
@@ -603,7 +604,9 @@ class SCT:
         else:
             fired, self.input_buffer = [], []
         if vm_plan[6]:      # a controllable event to choose
-            enabled, afters = vm._enabled_now()
+            memo = vm._enabled_at
+            entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's lookup, inline
+            enabled, afters = entry or vm._enabled_now()
             if enabled:
                 order = self._in_file_order.get(enabled)
                 if order is None:
