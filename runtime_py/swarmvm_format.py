@@ -182,16 +182,15 @@ def _numbers(raw: bytes, pos: int, count: int, width: int) -> List[int]:
 
 
 def _records(raw: bytes, pos: int, count: int, mask_bytes: int, fields: struct.Struct) -> tuple:
-    """``count`` records of a mask then ``fields`` at ``pos``, decoded in one pass: (the masks
-    as ints, then each field's values), each a list, and the position after them."""
+    """``count`` records of a mask then ``fields`` (one-character codes) at ``pos``, decoded in
+    one pass: (the masks as ints, then each field's values), each a list, and the position
+    after them."""
     record = _RECORDS.get((mask_bytes, fields))
     if record is None:
         record = _RECORDS[mask_bytes, fields] = struct.Struct("<%ds%s" % (mask_bytes, fields.format.lstrip("<")))
     end = pos + count * record.size
-    rows = list(record.iter_unpack(raw[pos:end]))
-    masks = [int.from_bytes(row[0], "little") for row in rows]
-    columns = tuple([row[i] for row in rows] for i in range(1, len(fields.format)))
-    return (masks,) + columns + (end,)
+    columns = list(zip(*record.iter_unpack(raw[pos:end]))) or [()] * len(fields.format)
+    return ([int.from_bytes(mask, "little") for mask in columns[0]],) + tuple(map(list, columns[1:])) + (end,)
 
 
 _RECORDS: Dict[tuple, struct.Struct] = {}     # (mask bytes, fields) -> the record's struct

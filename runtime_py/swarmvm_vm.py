@@ -179,14 +179,13 @@ class VM:
         # Check order: public uncontrollable events first, then private ones, each by name.
         self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
         everything = (1 << image.num_events) - 1
+        controllable = image.controllable
         self.not_alphabet = [everything & ~a for a in image.sup_alphabet]
-        self.event_sups: list = [[] for _ in range(image.num_events)]
-        for sup, alphabet in enumerate(image.sup_alphabet):
-            for e in _bits(alphabet):
-                self.event_sups[e].append(sup)
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
-        self.allowed, self.weights = [], []
+        # The gates: the supervisors that can disable a controllable event, each with the
+        # controllable events it allows in each of its states (the enabled set is their AND).
+        self.allowed, self.weights, gates = [], [], []
         pairs_of: list = [[] for _ in range(image.num_events)]
         self._moves = None
         events_of: dict = {}    # a state's defined mask -> its events (states share masks)
@@ -194,7 +193,11 @@ class VM:
         for sup, first, count, not_alphabet in zip(range(image.num_supervisors), image.sup_first_state,
                                                    image.sup_num_states, self.not_alphabet):
             defined = image.state_defined[first:first + count]
-            self.allowed.append([mask | not_alphabet for mask in defined])
+            allowed = [mask | not_alphabet for mask in defined]
+            self.allowed.append(allowed)
+            gate = [mask & controllable for mask in allowed]
+            if min(gate) != controllable:
+                gates.append((sup, gate))
             columns = {e: [None] * count for e in _bits(image.sup_alphabet[sup])}
             weights = []
             for local, (mask, base) in enumerate(zip(defined, image.state_first[first:first + count])):
@@ -210,12 +213,9 @@ class VM:
             for e, column in columns.items():
                 pairs_of[e].append((sup, column))
         self.successors = [tuple(pairs) for pairs in pairs_of]
+        self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
+        self._gates = tuple(gates)
         self._plan = None
-        # The supervisors that can disable a controllable event, each with the controllable
-        # events it allows in each of its states: the enabled set is the AND over these alone.
-        self._gates = tuple((sup, masks) for sup, masks in enumerate([m & image.controllable for m in allowed]
-                                                                     for allowed in self.allowed)
-                            if min(masks) != image.controllable & everything)
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
         # The enabled events of each combination of states met (``tuple(states)`` -> events):
         # one lookup where a run keeps to a few combinations (see _enabled_now).
