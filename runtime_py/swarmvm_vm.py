@@ -213,6 +213,10 @@ class VM:
             for e, column in columns.items():
                 pairs_of[e].append((sup, column))
         self.successors = [tuple(pairs) for pairs in pairs_of]
+        # When no state of any supervisor leaves an uncontrollable event undefined, no input can
+        # violate, and the step moves the inputs by these successors without a check (else None).
+        inputs_total = all(None not in column for e in self.input_order for _, column in self.successors[e])
+        self._total = self.successors if inputs_total else None
         self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
         self._gates = tuple(gates)
         self._plan = None
@@ -452,7 +456,17 @@ class VM:
             fired = [event for event in fired if not previous >> event & 1]
             self.previous = current
         if fired:
-            self._fire(fired, acts)
+            total = self._total
+            if total is None:
+                self._fire(fired, acts)
+            else:                       # no input can violate: the moves without a check
+                states = self.states
+                for event in fired:
+                    for sup, successor in total[event]:
+                        states[sup] = successor[states[sup]]
+                    if acts[event] is not None:
+                        self._act(event, acts[event])
+                        states, acts = self.states, (self._plan or self._bound())[1]
             if quiet:
                 return fired
             acts = (self._plan or self._bound())[1]
