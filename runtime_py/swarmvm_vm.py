@@ -317,9 +317,10 @@ class VM:
         self.rng = XorShift32(self.seed)
 
     def _enabled_mask(self):
-        mask = self.image.controllable
-        for allowed, state in zip(self.allowed, self.states):
-            mask &= allowed[state]
+        """The controllable events every supervisor allows in its state: an AND over the gates."""
+        mask, states = self.image.controllable, self.states
+        for sup, masks in self._gates:
+            mask &= masks[states[sup]]
         return mask
 
     def enabled(self):
@@ -329,7 +330,7 @@ class VM:
     def _enabled_now(self):
         """(the enabled events at the current states, a tuple in canonical order; the states
         after each of them, or None). A combination of states met for the first time gets its
-        events (one AND per gate); met again, also the states after each event (an enabled
+        events (_enabled_mask); met again, also the states after each event (an enabled
         event cannot violate: every supervisor that has it defines it here), and the pair is
         remembered, so that a run that keeps to a few combinations steps by lookups. The memo
         is dropped at ENABLED_MEMO_LIMIT combinations (memory stays bounded), or earlier when
@@ -339,9 +340,7 @@ class VM:
         entry = memo.get(tuple(states)) if memo is not None else None
         if entry is not None:
             return entry
-        mask = self.image.controllable
-        for sup, masks in self._gates:
-            mask &= masks[states[sup]]
+        mask = self._enabled_mask()
         enabled = self._enabled_sets.get(mask)
         if enabled is None:
             enabled = self._enabled_sets[mask] = tuple(_bits(mask))
