@@ -99,23 +99,19 @@ def _poller(polls, event_name=None):
     wrap = event_name is not None
     make = _POLLERS.get((events, wrap))
     if make is None:
-        args = "".join("c%d=checks[%d], d%d=datas[%d], " % (i, i, i, i) for i in range(len(events)))
-        calls = "".join("            e = %d\n            if c%d(d%d):\n                add(%d)\n" % (event, i, i, event)
-                        for i, event in enumerate(events))
-        handler = ("        except Exception as exc:\n"
-                   "            raise CallbackError(event_name(e), 'check', exc) from exc\n" if wrap else
-                   "        finally:\n"
-                   "            pass\n")
-        source = ("def make(checks, datas, event_name, CallbackError):\n"
-                  "    def poll(%s):\n"
-                  "        fired = []\n"
-                  "        add = fired.append\n"
-                  "        e = -1\n"
-                  "        try:\n%s"
-                  "            pass\n"
-                  "%s"
-                  "        return fired\n"
-                  "    return poll\n" % (args, calls, handler))
+        args = ", ".join("c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(len(events)))
+        body = [line for i, event in enumerate(events)
+                for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
+        if wrap:
+            body = (["e = -1", "try:"] + ["    " + line for line in body + ["pass"]]
+                    + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
+        source = "\n".join(["def make(checks, datas, event_name, CallbackError):",
+                            "    def poll(%s):" % args,
+                            "        fired = []",
+                            "        add = fired.append"]
+                           + ["        " + line for line in body]
+                           + ["        return fired",
+                              "    return poll", ""])
         namespace: dict = {}
         exec(source, namespace)
         if len(_POLLERS) >= MAX_POLLERS:
