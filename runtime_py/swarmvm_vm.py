@@ -185,6 +185,7 @@ class VM:
         pairs_of: list = [[] for _ in range(image.num_events)]
         self._moves = None
         events_of: dict = {}    # a state's defined mask -> its events (states share masks)
+        inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
         targets, probs = image.targets, image.probs
         for sup, first, count, not_alphabet in zip(range(image.num_supervisors), image.sup_first_state,
                                                    image.sup_num_states, self.not_alphabet):
@@ -208,10 +209,11 @@ class VM:
             self.weights.append(weights)
             for e, column in columns.items():
                 pairs_of[e].append((sup, column))
+                if not controllable >> e & 1 and None in column:
+                    inputs_total = False
         self.successors = [tuple(pairs) for pairs in pairs_of]
         # When no state of any supervisor leaves an uncontrollable event undefined, no input can
         # violate, and the step moves the inputs by these successors without a check (else None).
-        inputs_total = all(None not in column for e in self.input_order for _, column in self.successors[e])
         self._total = self.successors if inputs_total else None
         self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
         self._gates = tuple(gates)
