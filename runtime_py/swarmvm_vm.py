@@ -174,28 +174,25 @@ class VM:
         uncontrollable = ((1 << image.num_events) - 1) & ~image.controllable
         # Check order: public uncontrollable events first, then private ones, each by name.
         self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
-        everything = (1 << image.num_events) - 1
         controllable = image.controllable
-        self.not_alphabet = [everything & ~a for a in image.sup_alphabet]
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
         # The gates: the supervisors that can disable a controllable event, each with the
         # controllable events it allows in each of its states (the enabled set is their AND).
-        self.allowed, self.weights, gates = [], [], []
+        self.weights, gates = [], []
         pairs_of: list = [[] for _ in range(image.num_events)]
         self._moves = None
         events_of: dict = {}    # a state's defined mask -> its events (states share masks)
         inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
         targets, probs = image.targets, image.probs
-        for sup, first, count, not_alphabet in zip(range(image.num_supervisors), image.sup_first_state,
-                                                   image.sup_num_states, self.not_alphabet):
+        for sup, first, count, alphabet in zip(range(image.num_supervisors), image.sup_first_state,
+                                               image.sup_num_states, image.sup_alphabet):
             defined = image.state_defined[first:first + count]
-            allowed = [mask | not_alphabet for mask in defined]
-            self.allowed.append(allowed)
-            gate = [mask & controllable for mask in allowed]
+            outside = controllable & ~alphabet      # the controllable events it cannot disable
+            gate = [(mask & controllable) | outside for mask in defined]
             if min(gate) != controllable:
                 gates.append((sup, gate))
-            columns = {e: [None] * count for e in _bits(image.sup_alphabet[sup])}
+            columns = {e: [None] * count for e in _bits(alphabet)}
             weights = []
             for local, (mask, base) in enumerate(zip(defined, image.state_first[first:first + count])):
                 events = events_of.get(mask)
