@@ -521,7 +521,7 @@ def _published_draw():
     bit (randint -> randrange -> Random._randbelow_with_getrandbits: getrandbits(30) until at
     most 10^9), without randint's three Python-level calls, a third of a small model's exact
     step; tests/python/test_sct_exact.py checks the two agree."""
-    if random.randint != _RANDINT:
+    if random.randint is not _RANDINT:
         return random.randint(0, 1000000000)
     getrandbits = random.getrandbits
     draw = getrandbits(30)
@@ -572,6 +572,7 @@ class SCT:
             self._file_index = [0] * len(self._canonical)
             for i, c in enumerate(self._canonical):
                 self._file_index[c] = i
+            self._private = [0 if image.public >> c & 1 else 1 for c in range(image.num_events)]
             self._exact_plan = None
             self._in_file_order: dict = {}
 
@@ -603,10 +604,9 @@ class SCT:
         true = plan[1]()
         file_index = self._file_index
         if true:
-            if self._public_first:
-                public = vm.image.public
-                true = [c for c in true if public >> c & 1] + [c for c in true if not public >> c & 1]
-            fired = [file_index[c] for c in true]
+            if self._public_first:      # public first, each part in file order (a stable sort)
+                true.sort(key=self._private.__getitem__)
+            fired = list(map(file_index.__getitem__, true))
             vm._fire(true, (vm._plan or vm._bound())[1])
             self.input_buffer = list(fired)
         else:
