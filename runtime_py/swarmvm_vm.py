@@ -14,6 +14,7 @@ __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEve
 
 import os
 import random
+import types
 
 from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 
@@ -87,46 +88,106 @@ def _bits(mask):
     return out
 
 
-def _poller(polls, event_name=None):
-    """The checks' poll, for one plan: a function that calls each check of ``polls`` ((event,
-    check, data), in check order) once and returns the events whose check was true, a new list
-    in that order. If a check raises: CallbackError naming the event (``event_name`` gives its
-    name), or with no ``event_name`` the exception as it is (the published VM's way, for
-    SCT's exact mode). Written out check by check (the checks and their data are its default
-    arguments) because a loop over the checks cost a sixth of a step on models with many
-    inputs; the code, which depends on the events alone, is compiled once (_POLLERS)."""
-    events = tuple(event for event, _, _ in polls)
-    wrap = event_name is not None
-    make = _POLLERS.get((events, wrap))
+def _check_args(count):
+    """The parameters of a written-out poll: each check and its data as a default argument."""
+    return "".join(", c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(count))
+
+
+def _poll_lines(events, wrap):
+    """Source lines that call each check ``c<i>`` with its data ``d<i>`` once, in order, and
+    ``add`` the event of each check that is true; ``wrap``: a check that raises raises
+    CallbackError naming its event (``event_name``), else the exception as it is. Written out
+    check by check because a loop over the checks cost a sixth of a step on models with many
+    inputs."""
+    body = [line for i, event in enumerate(events)
+            for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
+    if not wrap:
+        return body
+    return (["e = -1", "try:"] + ["    " + line for line in body + ["pass"]]
+            + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
+
+
+def _compiled(key, lines):
+    """The function ``make`` that the source ``lines`` define, compiled once per ``key`` (the
+    code depends on the events and options alone, not on the callbacks): _COMPILED."""
+    make = _COMPILED.get(key)
     if make is None:
-        args = ", ".join("c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(len(events)))
-        body = [line for i, event in enumerate(events)
-                for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
-        if wrap:
-            body = (["e = -1", "try:"] + ["    " + line for line in body + ["pass"]]
-                    + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
-        source = "\n".join(["def make(checks, datas, event_name, CallbackError):",
-                            "    def poll(%s):" % args,
-                            "        fired = []",
-                            "        add = fired.append"]
-                           + ["        " + line for line in body]
-                           + ["        return fired",
-                              "    return poll", ""])
         namespace: dict = {}
-        exec(source, namespace)
-        if len(_POLLERS) >= MAX_POLLERS:
-            _POLLERS.clear()
-        make = _POLLERS[events, wrap] = namespace["make"]
-    return make([c for _, c, _ in polls], [d for _, _, d in polls], event_name, CallbackError)
+        exec("\n".join(lines) + "\n", namespace)
+        if len(_COMPILED) >= MAX_COMPILED:
+            _COMPILED.clear()
+        make = _COMPILED[key] = namespace["make"]
+    return make
 
 
-_POLLERS: dict = {}     # (sequence of events, wrap) -> the compiled maker of their poll
-MAX_POLLERS = 64
+_COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or step
+MAX_COMPILED = 64
+
+
+def _poller(polls):
+    """SCT exact mode's poll: a function that calls each check of ``polls`` ((event, check,
+    data), in file order) once and returns the events whose check was true, a new list in that
+    order; a check that raises raises as it does in the published VM."""
+    events = tuple(event for event, _, _ in polls)
+    make = _compiled(("poll", events), ["def make(checks, datas):",
+                                        "    def poll(%s):" % _check_args(len(events))[2:],
+                                        "        fired = []",
+                                        "        add = fired.append"]
+                     + ["        " + line for line in _poll_lines(events, False)]
+                     + ["        return fired", "    return poll"])
+    return make([c for _, c, _ in polls], [d for _, _, d in polls])
+
+
+def _stepper(events, edge, quiet, uniform, strict, chooses, total):
+    """The maker of a VM's step written out for its plan: the checks of ``events`` polled
+    (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
+    inputs, if-quiet control, uniform policy, strict, a controllable event to choose) and, when
+    no input can violate (``total``), the inputs moved without a check. One frame per step,
+    the plan's parts its locals: on the smallest models the step is mostly that fixed cost."""
+    body = ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
+    body += ["fired = []", "add = fired.append"] + _poll_lines(events, True)
+    body += ["a = acts if vm._plan is plan else vm._bound()[0]"]
+    if edge:
+        body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
+                 "fired = [event for event in fired if not previous >> event & 1]",
+                 "vm.previous = current"]
+    body += ["if fired:"]
+    if total:
+        body += ["    states = vm.states",
+                 "    for event in fired:",
+                 "        for sup, successor in successors[event]:",
+                 "            states[sup] = successor[states[sup]]",
+                 "        if a[event] is not None:",
+                 "            vm._act(event, a[event])",
+                 "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
+    else:
+        body += ["    vm._fire(fired, a)"]
+    body += ["    return fired" if quiet or not chooses else "    a = (vm._plan or vm._bound())[0]"]
+    if chooses:
+        body += ["states = vm.states",
+                 "memo = vm._enabled_at",
+                 "entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
+                 "enabled, afters = entry or vm._enabled_now()",
+                 "if enabled:"]
+        body += (["    k = 0 if len(enabled) == 1 else vm.rng.below(len(enabled))", "    choice = enabled[k]"]
+                 if uniform else ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"])
+        body += ["    if afters is None:",
+                 "        vm._fire((choice,), a)",
+                 "    else:",
+                 "        states[:] = afters[k]",
+                 "        if a[choice] is not None:",
+                 "            vm._act(choice, a[choice])",
+                 "    fired.append(choice)"]
+    body += ["return fired"]
+    key = ("step", events, edge, quiet, uniform, strict, chooses, total)
+    return _compiled(key, ["def make(plan, acts, checks, datas, successors, event_name, CallbackError):",
+                           "    def step(vm%s):" % _check_args(len(events))]
+                     + ["        " + line for line in body] + ["    return step"])
 
 
 class _Option:
-    """A run option of :class:`VM` (inputs, control, policy, strict) that the step reads from
-    its plan (VM._bound) rather than per step: setting one makes the VM plan again."""
+    """A run option of :class:`VM` (inputs, control, policy, strict) that the step is written
+    out for (VM._bound) rather than reads per step: setting one makes the VM plan again."""
 
     def __set_name__(self, owner, name):
         self.slot = "_" + name
@@ -136,7 +197,7 @@ class _Option:
 
     def __set__(self, vm, value):
         setattr(vm, self.slot, value)
-        vm._plan = None
+        vm._replan()
 
 
 class VM:
@@ -148,6 +209,7 @@ class VM:
     ``priority`` (event names, highest first) for ``first``."""
 
     inputs, control, policy, strict = _Option(), _Option(), _Option(), _Option()
+    _plan: tuple | None     # see _bound
 
     def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
                  priority=None, learner=None, on_violation=None, strict=False):
@@ -214,7 +276,7 @@ class VM:
         self._total = self.successors if inputs_total else None
         self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
         self._gates = tuple(gates)
-        self._plan = None
+        self._replan()
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
         # The enabled events of each combination of states met (``tuple(states)`` -> events):
         # one lookup where a run keeps to a few combinations (see _enabled_now).
@@ -284,7 +346,7 @@ class VM:
             self.checks[index] = check
         self.data[index] = data
         self._bindings_checked = False
-        self._plan = None
+        self._replan()
 
     def bind_controller(self, controller):
         """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
@@ -360,19 +422,34 @@ class VM:
         return entry
 
     def _bound(self):
-        """What the step needs of the bindings and options, rebuilt after a bind, a load or a
-        change of option: the poller of the checks (see _poller), per event its (action, data)
-        or None, then whether inputs are edges, the control waits for a quiet step, the policy
-        is uniform, the VM is strict, and there is a controllable event."""
+        """The plan: what the step needs of the bindings, the options and the tables, made
+        after a bind, a load or a change of option. It is (per event its (action, data) or None,
+        whether there is a controllable event); making it also writes the step out for it
+        (_stepper) and installs that on the VM, where ``vm.step`` finds it before the class's."""
         plan = self._plan
         if plan is None:
             checks, actions, data = self.checks, self.actions, self.data
             polls = [(e, checks[e], data.get(e)) for e in self.input_order if e in checks]
             acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
-            plan = self._plan = (_poller(polls, self.image.event_name), acts, self.inputs == "edge",
-                                 self.control == "if-quiet", self.policy == "uniform", bool(self.strict),
-                                 bool(self.image.controllable))
+            chooses = bool(self.image.controllable)
+            plan = self._plan = (acts, chooses)
+            make = _stepper(tuple(e for e, _, _ in polls), self.inputs == "edge", self.control == "if-quiet",
+                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None)
+            step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors,
+                        self.image.event_name, CallbackError)
+            self.__dict__["step"] = types.MethodType(step, self)
         return plan
+
+    def _replan(self):
+        """Drop the plan and the step written out for it."""
+        self._plan = None
+        self.__dict__.pop("step", None)
+
+    def _check_bindings(self):
+        """Strict mode, before a step: every uncontrollable event has a check."""
+        if self.unbound_checks():
+            raise UnboundEvents(self.unbound_checks())
+        self._bindings_checked = True
 
     def _fire(self, events, acts):
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
@@ -389,11 +466,11 @@ class VM:
                     self.violations += 1
                 if self.on_violation is not None:
                     self.on_violation(event, sup)
-                    states, acts = self.states, self._bound()[1]
+                    states, acts = self.states, self._bound()[0]
             act = acts[event]
             if act is not None:
                 self._act(event, act)
-                states, acts = self.states, self._bound()[1]
+                states, acts = self.states, self._bound()[0]
 
     def _act(self, event, act):
         """Run an event's bound (action, data); CallbackError if the action raises."""
@@ -404,7 +481,7 @@ class VM:
 
     def _apply(self, event):
         """Fire one event (the conformance tests re-derive enabled sets with it)."""
-        self._fire((event,), self._bound()[1])
+        self._fire((event,), self._bound()[0])
 
     def _weight(self, event):
         weight = Q15_ONE
@@ -435,55 +512,11 @@ class VM:
         raise AssertionError("unreachable: pick below total")
 
     def step(self):
-        """One VM step; returns the events that fired, in order (indices)."""
-        plan = self._plan or self._bound()
-        poll, acts, edge, quiet, uniform, strict, chooses = plan
-        if strict and not self._bindings_checked:
-            if self.unbound_checks():
-                raise UnboundEvents(self.unbound_checks())
-            self._bindings_checked = True
-        fired = poll()
-        if self._plan is not plan:      # a check bound something
-            acts = self._bound()[1]
-        if edge:
-            previous, current = self.previous, sum(1 << event for event in fired)
-            fired = [event for event in fired if not previous >> event & 1]
-            self.previous = current
-        if fired:
-            total = self._total
-            if total is None:
-                self._fire(fired, acts)
-            else:                       # no input can violate: the moves without a check
-                states = self.states
-                for event in fired:
-                    for sup, successor in total[event]:
-                        states[sup] = successor[states[sup]]
-                    if acts[event] is not None:
-                        self._act(event, acts[event])
-                        states, acts = self.states, (self._plan or self._bound())[1]
-            if quiet:
-                return fired
-            acts = (self._plan or self._bound())[1]
-        if not chooses:
-            return fired
-        states, memo = self.states, self._enabled_at
-        entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's lookup, inline
-        enabled, afters = entry or self._enabled_now()
-        if enabled:
-            if not uniform:
-                choice = self.select(enabled)
-                k = enabled.index(choice)
-            else:
-                k = 0 if len(enabled) == 1 else self.rng.below(len(enabled))
-                choice = enabled[k]
-            if afters is None:
-                self._fire((choice,), acts)
-            else:
-                states[:] = afters[k]
-                if acts[choice] is not None:
-                    self._act(choice, acts[choice])
-            fired.append(choice)
-        return fired
+        """One VM step; returns the events that fired, in order (indices). This runs once per
+        plan: making the plan (_bound) installs the step written out for it, which runs from
+        then on."""
+        self._bound()
+        return self.step()
 
 
 def format_trace_line(step, names, states, violations):
@@ -607,11 +640,11 @@ class SCT:
             if self._public_first:      # public first, each part in file order (a stable sort)
                 true.sort(key=self._private.__getitem__)
             fired = list(map(file_index.__getitem__, true))
-            vm._fire(true, (vm._plan or vm._bound())[1])
+            vm._fire(true, (vm._plan or vm._bound())[0])
             self.input_buffer = list(fired)
         else:
             fired, self.input_buffer = [], []
-        if vm_plan[6]:      # a controllable event to choose
+        if vm_plan[1]:      # a controllable event to choose
             memo = vm._enabled_at
             entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's lookup, inline
             enabled, afters = entry or vm._enabled_now()
@@ -620,7 +653,7 @@ class SCT:
                 if order is None:
                     order = self._in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))
                 choice, k = order[_published_draw() % len(order)]
-                acts = (vm._plan or vm._bound())[1]
+                acts = (vm._plan or vm._bound())[0]
                 if afters is None:
                     vm._fire((enabled[k],), acts)
                 else:
