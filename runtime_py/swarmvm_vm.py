@@ -124,20 +124,6 @@ _COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or ste
 MAX_COMPILED = 64
 
 
-def _poller(polls):
-    """SCT exact mode's poll: a function that calls each check of ``polls`` ((event, check,
-    data), in file order) once and returns the events whose check was true, a new list in that
-    order; a check that raises raises as it does in the published VM."""
-    events = tuple(event for event, _, _ in polls)
-    make = _compiled(("poll", events), ["def make(checks, datas):",
-                                        "    def poll(%s):" % _check_args(len(events))[2:],
-                                        "        fired = []",
-                                        "        add = fired.append"]
-                     + ["        " + line for line in _poll_lines(events, False)]
-                     + ["        return fired", "    return poll"])
-    return make([c for _, c, _ in polls], [d for _, _, d in polls])
-
-
 def _stepper(events, edge, quiet, uniform, strict, chooses, total):
     """The maker of a VM's step written out for its plan: the checks of ``events`` polled
     (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
@@ -183,6 +169,48 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total):
     return _compiled(key, ["def make(plan, acts, checks, datas, successors, event_name, CallbackError):",
                            "    def step(vm%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return step"])
+
+
+def _exact_stepper(events, public_first, chooses):
+    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper): the
+    checks of ``events`` polled in file order (raising as in the published VM), the true ones
+    fired in file order (``public_first``: public ones first, as SCTPub), then the published
+    choice among the enabled events in file order when there are controllable events."""
+    body = ["vm = sct.vm",
+            "if vm._plan is not vm_plan:",
+            "    sct._plan_exact()",
+            "    return sct.run_step()",
+            "fired = []",
+            "add = fired.append"] + _poll_lines(events, False)
+    body += ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
+    body += ["    true = fired",
+             "    fired = list(map(file_index.__getitem__, true))",
+             "    vm._fire(true, (vm._plan or vm._bound())[0])",
+             "    sct.input_buffer = list(fired)",
+             "else:",
+             "    sct.input_buffer = []"]
+    if chooses:
+        body += ["memo = vm._enabled_at",
+                 "entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's, inline",
+                 "enabled, afters = entry or vm._enabled_now()",
+                 "if enabled:",
+                 "    order = in_file_order.get(enabled)",
+                 "    if order is None:",
+                 "        order = in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))",
+                 "    choice, k = order[draw() % len(order)]",
+                 "    acts = (vm._plan or vm._bound())[0]",
+                 "    if afters is None:",
+                 "        vm._fire((enabled[k],), acts)",
+                 "    else:",
+                 "        vm.states[:] = afters[k]",
+                 "        if acts[enabled[k]] is not None:",
+                 "            vm._act(enabled[k], acts[enabled[k]])",
+                 "    fired.append(choice)"]
+    body += ["sct.last_events = fired"]
+    return _compiled(("exact", events, public_first, chooses),
+                     ["def make(vm_plan, checks, datas, file_index, private, in_file_order, draw):",
+                      "    def run_step(sct%s):" % _check_args(len(events))]
+                     + ["        " + line for line in body] + ["    return run_step"])
 
 
 class _Option:
@@ -606,7 +634,6 @@ class SCT:
             for i, c in enumerate(self._canonical):
                 self._file_index[c] = i
             self._private = [0 if image.public >> c & 1 else 1 for c in range(image.num_events)]
-            self._exact_plan = None
             self._in_file_order: dict = {}
 
     @property
@@ -623,54 +650,28 @@ class SCT:
 
     def run_step(self):
         """One step; ``last_events`` are the events it applied and ``input_buffer`` the
-        uncontrollable ones whose check was true (indices as in ``EV``)."""
+        uncontrollable ones whose check was true (indices as in ``EV``). In exact mode this
+        runs once per plan of the VM: it installs the step written out for it (_plan_exact)."""
         if not self.exact:
             fired = self.vm.step()
             self.last_events = fired
             self.input_buffer = [e for e in fired if not self.ev_controllable[e]]
             return
-        vm = self.vm
-        vm_plan = vm._plan or vm._bound()
-        plan = self._exact_plan
-        if plan is None or plan[0] is not vm_plan:
-            plan = self._plan_exact(vm_plan)
-        true = plan[1]()
-        file_index = self._file_index
-        if true:
-            if self._public_first:      # public first, each part in file order (a stable sort)
-                true.sort(key=self._private.__getitem__)
-            fired = list(map(file_index.__getitem__, true))
-            vm._fire(true, (vm._plan or vm._bound())[0])
-            self.input_buffer = list(fired)
-        else:
-            fired, self.input_buffer = [], []
-        if vm_plan[1]:      # a controllable event to choose
-            memo = vm._enabled_at
-            entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's lookup, inline
-            enabled, afters = entry or vm._enabled_now()
-            if enabled:
-                order = self._in_file_order.get(enabled)
-                if order is None:
-                    order = self._in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))
-                choice, k = order[_published_draw() % len(order)]
-                acts = (vm._plan or vm._bound())[0]
-                if afters is None:
-                    vm._fire((enabled[k],), acts)
-                else:
-                    vm.states[:] = afters[k]
-                    if acts[enabled[k]] is not None:
-                        vm._act(enabled[k], acts[enabled[k]])
-                fired.append(choice)
-        self.last_events = fired
+        self._plan_exact()
+        return self.run_step()
 
-    def _plan_exact(self, vm_plan):
-        """The exact step's poll of the checks in file order (raising as the published VM),
-        for the VM's current plan ``vm_plan``."""
+    def _plan_exact(self):
+        """Write the exact step out for the VM's current plan (_exact_stepper) and install it on
+        this object, where ``run_step`` finds it before the class's; it plans again when the
+        VM's plan changes."""
         vm, canonical = self.vm, self._canonical
+        vm_plan = vm._plan or vm._bound()
         polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
                  for i in self._checks_order if canonical[i] in vm.checks]
-        self._exact_plan = (vm_plan, _poller(polls))
-        return self._exact_plan
+        make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1])
+        step = make(vm_plan, [c for _, c, _ in polls], [d for _, _, d in polls], self._file_index, self._private,
+                    self._in_file_order, _published_draw)
+        self.__dict__["run_step"] = types.MethodType(step, self)
 
     def get_events(self):
         return self.EV, self.ev_controllable
