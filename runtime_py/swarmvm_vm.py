@@ -6,7 +6,9 @@ crc16, FORMAT_VERSION). It implements the execution semantics of docs/semantics.
 the other runtimes (C, C++) are checked against this one trace for trace. The tables come from
 a table image (docs/image-format.md), either compiled into a generated module as a bytes
 literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "compiled in" and
-"loaded" are one code path.
+"loaded" are one code path. For speed, a VM writes its step out for its bindings and options
+(VM._bound, _stepper) and compiles it once; docs/api.md says what else the step and the load
+do ahead of time, and what they gained.
 """
 
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
@@ -234,7 +236,8 @@ class VM:
     Options (docs/semantics.md): ``inputs`` level|edge, ``control`` after-inputs|if-quiet,
     ``policy`` uniform|first|weighted|learned (learned takes ``learner``, an object with
     ``choose(vm, enabled)`` returning one of ``enabled``), ``seed`` for the generator,
-    ``priority`` (event names, highest first) for ``first``."""
+    ``priority`` (event names, highest first) for ``first``. ``step`` is written out for the
+    bindings and options in force and installed on the VM (see _bound)."""
 
     inputs, control, policy, strict = _Option(), _Option(), _Option(), _Option()
     _plan: tuple | None     # see _bound
