@@ -8,7 +8,7 @@ import sys
 
 import click
 
-from .cli import sim
+from .cli import need_studies_extra, plot, sim, sweep
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
 RATE_OPTIONS = (
@@ -77,3 +77,39 @@ def sim_energy(strategy, workers, chargers, seed, trace, as_json, **values):
                 "depleted_chargers", "consumed", "lost", "seconds"):
         value = result[key]
         click.echo("%-18s %s" % (key, round(value, 4) if isinstance(value, float) else value))
+
+
+@sweep.command("energy")
+@click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
+@click.option("--figures", default="9,10,11,12", show_default=True, help="The seed's figures whose grids to run.")
+@click.option("--runs", default=50, show_default=True, type=click.IntRange(1), help="Trials (seeds) per configuration.")
+@click.option("--first-seed", default=1, show_default=True, type=click.IntRange(0), help="Seeds first..first+runs-1.")
+@click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local ARGoS processes at once.")
+@click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+@rate_options
+def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress, **values):
+    """Energy replenishment: the grids of Figures 9-12 in real ARGoS; finished trials are not rerun."""
+    need_studies_extra()
+    from .energy_replenishment import plugin, sweep as grid_sweep, trial
+    wanted = [f.strip() for f in figures.split(",") if f.strip()]
+    bad = [f for f in wanted if f not in grid_sweep.FIGURES]
+    if bad or not wanted:
+        fail("--figures: unknown figure %r (some of %s)" % (bad[0] if bad else figures, ", ".join(grid_sweep.FIGURES)))
+    specs = grid_sweep.grid(params_from(values), wanted, range(first_seed, first_seed + runs))
+    try:
+        ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
+    except (plugin.BuildError, trial.TrialError) as exc:
+        fail(str(exc), 1)
+    click.echo("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
+
+
+@plot.command("energy")
+@click.argument("results", type=click.Path(exists=True, file_okay=False))
+@click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
+def plot_energy(results, out):
+    """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results."""
+    need_studies_extra()
+    from .energy_replenishment import plots
+    for path in plots.draw_all(results, out):
+        click.echo(path)
