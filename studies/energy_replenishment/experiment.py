@@ -22,8 +22,9 @@ def _fmt(value: float) -> str:
     return "%.10g" % value
 
 
-def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float) -> None:
-    element = ET.SubElement(parent, kind + "_controller", id=kind, library=library)
+def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float, baseline: bool) -> None:
+    element = ET.SubElement(parent, "energy_idle_controller" if baseline else kind + "_controller", id=kind,
+                            library=library)
     actuators = ET.SubElement(element, "actuators")
     ET.SubElement(actuators, "differential_steering", implementation="default")
     ET.SubElement(actuators, "range_and_bearing", implementation="default")
@@ -49,10 +50,10 @@ def _robots(arena: ET.Element, prefix: str, kind: str, count: int) -> None:
     ET.SubElement(epuck, "controller", config=kind)
 
 
-def experiment(p: Params, library: Path, result: Path, trace: Path | None = None) -> str:
+def experiment(p: Params, library: Path, result: Path, trace: Path | None = None, baseline: bool = False) -> str:
     """The experiment file's text. ``library``: the study plugin (without its suffix, as ARGoS
     takes it); ``result``: where the loop functions write the JSON result; ``trace``: an
-    optional per-step CSV."""
+    optional per-step CSV; ``baseline``: every robot runs the empty controller (benchmarks)."""
     root = ET.Element("argos-configuration")
     framework = ET.SubElement(root, "framework")
     ET.SubElement(framework, "system", threads="0")
@@ -60,9 +61,9 @@ def experiment(p: Params, library: Path, result: Path, trace: Path | None = None
                   random_seed=str(p.seed))
     controllers = ET.SubElement(root, "controllers")
     worker = "energy_worker" if p.strategy == "fixed" else "energy_worker_mc"
-    _controller(controllers, worker, str(library), p, p.capacity)
+    _controller(controllers, worker, str(library), p, p.capacity, baseline)
     if p.strategy == "mobile":
-        _controller(controllers, "energy_charger", str(library), p, p.charger_capacity)
+        _controller(controllers, "energy_charger", str(library), p, p.charger_capacity, baseline)
     loop = ET.SubElement(root, "loop_functions", library=str(library), label="energy_loop_functions")
     ET.SubElement(loop, "energy", move=_fmt(p.per_step(p.move_rate)), work=_fmt(p.per_step(p.work_rate)),
                   core=_fmt(p.per_step(p.core_rate)), charge=_fmt(p.per_step(p.charge_rate)),

@@ -20,9 +20,10 @@ class TrialError(RuntimeError):
     """ARGoS failed on a trial; the message carries its error output."""
 
 
-def run(p: Params, library: Path | None = None, trace: Path | None = None) -> dict:
+def run(p: Params, library: Path | None = None, trace: Path | None = None, baseline: bool = False) -> dict:
     """The trial's result: the loop functions' totals, the bound and the wall time. ``library``:
-    a plugin already built (:func:`plugin.build`); ``trace``: write the per-step CSV there."""
+    a plugin already built (:func:`plugin.build`); ``trace``: write the per-step CSV there;
+    ``baseline``: the same robots with an empty controller (benchmarks/energy_study.py)."""
     library = library or plugin.build()
     prefix = plugin.find_argos()
     env = dict(os.environ, LD_LIBRARY_PATH=os.pathsep.join(filter(None, [str(prefix / "lib" / "argos3"),
@@ -31,7 +32,7 @@ def run(p: Params, library: Path | None = None, trace: Path | None = None) -> di
     with tempfile.TemporaryDirectory(prefix="swarmvm-energy-") as folder:
         result = Path(folder) / "result.json"
         config = Path(folder) / "trial.argos"
-        config.write_text(experiment(p, library, result, trace))
+        config.write_text(experiment(p, library, result, trace, baseline))
         start = time.perf_counter()
         done = subprocess.run([str(prefix / "bin" / "argos3"), "-n", "-c", str(config), "-l", "/dev/null",
                                "-e", str(Path(folder) / "err.txt")], cwd=folder, env=env,

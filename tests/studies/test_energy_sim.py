@@ -133,3 +133,13 @@ def test_sim_energy_bad_value_one_line():
     out = subprocess.run([sys.executable, "-m", "swarmvm", "sim", "energy", "--capacity", "-1"], capture_output=True,
                          text=True)
     assert out.returncode == 2 and out.stdout == ""
+
+
+@pytest.mark.emulator
+def test_empty_controller_baseline(library):
+    """The benchmark's baseline: robots that never move or work spend exactly their core energy."""
+    p = Params(strategy="mobile", chargers=2, **SHORT)
+    r = trial.run(p, library, baseline=True)
+    assert r["work"] == 0 and r["transferred"] == 0 and r["depleted"] == 0
+    assert r["consumed"] == pytest.approx(8 * 1200 * 0.005)
+    assert abs(conserved(r, p)) < 1e-6
