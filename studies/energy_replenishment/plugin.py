@@ -66,23 +66,24 @@ def _generate(folder: Path) -> None:
             shutil.copy(path, folder / path.name)
 
 
-def _key(folder: Path, prefix: Path) -> str:
-    digest = hashlib.sha256(str(prefix).encode())
+def _key(folder: Path, prefix: Path, cxx_flags: str) -> str:
+    digest = hashlib.sha256(("%s\0%s" % (prefix, cxx_flags)).encode())
     for path in sorted(p for p in folder.rglob("*") if p.is_file()):
         digest.update(str(path.relative_to(folder)).encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()[:16]
 
 
-def build(cache: Path | None = None) -> Path:
+def build(cache: Path | None = None, cxx_flags: str = "") -> Path:
     """The plugin library's path without its suffix (as ARGoS's ``library=`` takes it), built
-    if this version of its sources has not been built yet."""
+    if this version of its sources has not been built yet (``cxx_flags``: extra compiler flags,
+    part of the key; the tests build with -Werror)."""
     prefix = find_argos()
     root = Path(cache) if cache else cache_root() / "energy-plugin"
     root.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=root, prefix=".src-") as temp:
         sources = Path(temp) / "src"
         _generate(sources)
-        key = _key(sources, prefix)
+        key = _key(sources, prefix, cxx_flags)
         done = root / key
         library = done / "build" / LIBRARY
         if (done / "build" / (LIBRARY + ".so")).is_file():
@@ -94,7 +95,7 @@ def build(cache: Path | None = None) -> Path:
             log = Path(temp) / "build.log"
             with open(log, "w") as out:
                 for command in (["cmake", "-S", str(sources), "-B", str(sources / "build"), "-DCMAKE_BUILD_TYPE=Release",
-                                 "-DARGOS_PREFIX=%s" % prefix],
+                                 "-DARGOS_PREFIX=%s" % prefix, "-DCMAKE_CXX_FLAGS=%s" % cxx_flags],
                                 ["cmake", "--build", str(sources / "build"), "-j", "2"]):
                     if subprocess.run(command, stdout=out, stderr=subprocess.STDOUT).returncode != 0:
                         raise BuildError("the energy plugin does not build:\n" + log.read_text()[-4000:])

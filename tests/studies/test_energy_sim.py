@@ -143,3 +143,12 @@ def test_empty_controller_baseline(library):
     assert r["work"] == 0 and r["transferred"] == 0 and r["depleted"] == 0
     assert r["consumed"] == pytest.approx(8 * 1200 * 0.005)
     assert abs(conserved(r, p)) < 1e-6
+
+
+@pytest.mark.emulator
+@pytest.mark.slow
+def test_plugin_builds_warning_free(library, tmp_path):
+    """The study's controllers, application layer and loop functions under -Wall -Wextra
+    -pedantic (swarmvm_argos.cmake) with -Werror, in a cache of their own."""
+    built = plugin.build(tmp_path, cxx_flags="-Werror")
+    assert built.parent.parent.parent == tmp_path and Path(str(built) + ".so").is_file()
