@@ -17,7 +17,7 @@ RATE_OPTIONS = (
     ("--charge-rate", "charge_rate", click.FloatRange(min=0, min_open=True),
      "Charging rate per second in the charging strip (and the transfer rate unless --transfer-rate)."),
     ("--transfer-rate", "transfer_rate", click.FloatRange(min=0, min_open=True),
-     "What a mobile charger gives per second [default: the charge rate]."),
+     "What a mobile charger gives per second."),
     ("--transfer-loss", "transfer_loss", click.FloatRange(0, 1, max_open=True), "Share of a transfer that is lost (1 - xi)."),
     ("--move-rate", "move_rate", click.FloatRange(min=0), "Moving, per second."),
     ("--work-rate", "work_rate", click.FloatRange(min=0), "Working, per second."),
@@ -27,9 +27,11 @@ RATE_OPTIONS = (
 
 
 def rate_options(command):
-    """One option per RATE_OPTIONS entry, defaults from Params (None: not given)."""
-    for flag, _field, kind, text in reversed(RATE_OPTIONS):
-        command = click.option(flag, type=kind, default=None, help=text)(command)
+    """One option per RATE_OPTIONS entry; not given (None), it keeps Params' default, shown."""
+    from .energy_replenishment.params import Params
+    for flag, field, kind, text in reversed(RATE_OPTIONS):
+        shown = "the charge rate" if field == "transfer_rate" else "%g" % getattr(Params(), field)
+        command = click.option(flag, type=kind, default=None, show_default=shown, help=text)(command)
     return command
 
 
