@@ -2,8 +2,9 @@
  * Power cuts during a save of the learned-parameter store (runtime_c/swarmvm_store.h). Test
  * code only.
  *
- * The medium is wrapped so that only its first `budget` operations (byte writes, slot erases)
- * take effect: the rest of the save is lost, as when the battery dies there. For every cut
+ * The medium is wrapped so that only its first `budget` operations (bytes written, slot
+ * erases) take effect: the rest of the save is lost, as when the battery dies there, also in
+ * the middle of a block write. For every cut
  * point k from 0 to past the whole save, with 0, 1 or 2 records saved before, the probe saves a
  * new record with budget k, then loads as a robot would after the restart, and prints one line
  * "cut MEDIUM PRIOR K OUTCOME", OUTCOME being new, old (the last record saved before), none (no
@@ -12,7 +13,9 @@
  *
  * Media: "eeprom" (byte writes; on the ATmega328P the real EEPROM through avr-libc, from
  * kilolib's first free address), and on a host also "flash" (erase to 0xFF, writes only clear
- * bits, as a CapBot's flash page).
+ * bits, as a CapBot's flash page) with write blocks of 1 and of 4 bytes ("flash4", the
+ * nRF52840's word). On flash a write that is not whole aligned blocks, or that programs a byte
+ * twice between erases, is counted and printed at the end ("misuse N").
  */
 #include <stdint.h>
 
@@ -66,13 +69,24 @@ static void medium_set(uint16_t address, uint8_t value)
 }
 #endif
 
-static uint8_t is_flash;
+static uint8_t is_flash, block = 1;
+static uint8_t programmed[BASE + SLOTS_BYTES];      /* flash: written since the last erase */
+static uint16_t misuse;
 
-static int medium_write(void *ctx, uint16_t address, uint8_t value)
+static int medium_write(void *ctx, uint16_t address, const uint8_t *data, uint16_t length)
 {
+    uint16_t i;
     (void)ctx;
-    if (spend()) {
-        medium_set(address, is_flash ? (uint8_t)(medium_read(0, address) & value) : value);
+    if (is_flash && (address % block != 0u || length % block != 0u)) {
+        misuse++;
+    }
+    for (i = 0; i < length; i++) {
+        uint16_t at = (uint16_t)(address + i);
+        if (spend()) {             /* after the cut nothing happens, misuse included */
+            misuse = (uint16_t)(misuse + (is_flash && programmed[at]));
+            medium_set(at, is_flash ? (uint8_t)(medium_read(0, at) & data[i]) : data[i]);
+            programmed[at] = 1;
+        }
     }
     return 0;
 }
@@ -84,6 +98,7 @@ static int medium_erase(void *ctx, uint16_t address, uint16_t length)
     if (spend()) {
         for (i = 0; i < length; i++) {
             medium_set((uint16_t)(address + i), 0xFFu);
+            programmed[address + i] = 0;
         }
     }
     return 0;
@@ -94,6 +109,7 @@ static void erase_all(void)
     uint16_t i;
     for (i = 0; i < SLOTS_BYTES; i++) {
         medium_set((uint16_t)(BASE + i), 0xFFu);
+        programmed[BASE + i] = 0;
     }
 }
 
@@ -148,7 +164,7 @@ static void put_u8(uint8_t v)
 /* Every cut point of a save of record 3 after `prior` records 0.. (lines "cut ..."). */
 static void cuts(svm_store_t *store, const char *name)
 {
-    uint8_t prior, k, p, data[SLOT_SIZE], n, last = (uint8_t)(record(3, data) + SVM_STORE_OVERHEAD + 2u);
+    uint8_t prior, k, p, data[SLOT_SIZE], n, last = (uint8_t)(SVM_STORE_SLOT_BYTES(record(3, data), block) + 2u);
     for (prior = 0; prior < 3u; prior++) {
         for (k = 0; k <= last; k++) {     /* past the save's record + 10 operations */
             budget = 0xFFFFu;
@@ -169,6 +185,8 @@ static void cuts(svm_store_t *store, const char *name)
             put_u8(k);
             probe_putc(' ');
             probe_puts(outcome(store, 3, (int)prior - 1));
+            probe_putc(' ');
+            put_u8(block);
             probe_putc('\n');
         }
     }
@@ -183,6 +201,7 @@ int main(void)
     store.medium.write = medium_write;
     store.medium.erase = 0;
     store.medium.ctx = 0;
+    store.medium.block = 1;
     store.base = BASE;
     store.slot_size = SLOT_SIZE;
     is_flash = 0;
@@ -191,7 +210,10 @@ int main(void)
     store.medium.erase = medium_erase;
     is_flash = 1;
     cuts(&store, "flash");
+    store.medium.block = block = 4;
+    cuts(&store, "flash4");
     store.medium.erase = 0;
+    store.medium.block = block = 1;
     is_flash = 0;
 #else
     (void)medium_erase;
@@ -206,6 +228,9 @@ int main(void)
     medium_set((uint16_t)(BASE + SLOT_SIZE + 8u), (uint8_t)~medium_read(0, (uint16_t)(BASE + SLOT_SIZE + 8u)));
     probe_puts("rot ");
     probe_puts(outcome(&store, 1, 0));
+    probe_putc('\n');
+    probe_puts("misuse ");
+    put_u8((uint8_t)(misuse > 99u ? 99u : misuse));
     probe_putc('\n');
     probe_puts("end\n");
     probe_end();
