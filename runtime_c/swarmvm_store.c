@@ -93,8 +93,13 @@ static uint8_t body_byte(uint16_t i, uint32_t sequence, const uint8_t *data, uin
     if (i >= BODY_PAYLOAD + length) {
         return SVM_STORE_EMPTY;
     }
-    byte = i < BODY_LENGTH ? (uint8_t)(sequence >> (8u * i))
-           : i < BODY_PAYLOAD ? (uint8_t)(length >> (8u * (i - BODY_LENGTH))) : data[i - BODY_PAYLOAD];
+    if (i < BODY_LENGTH) {
+        byte = (uint8_t)(sequence >> (8u * i));
+    } else if (i < BODY_PAYLOAD) {
+        byte = (uint8_t)(length >> (8u * (i - BODY_LENGTH)));
+    } else {
+        byte = data[i - BODY_PAYLOAD];
+    }
     *crc = svm_crc16_update(*crc, byte);
     return byte;
 }
