@@ -4,19 +4,21 @@ medium's writes after k operations for every k across a whole save, with no, one
 records saved before, on a simulated EEPROM and a simulated flash page (erase, then writes
 that only clear bits; write blocks of 1 and 4 bytes, each block programmed once) on the host,
 and on the ATmega328P's real EEPROM in simavr. A write is cut at every byte, also inside a
-block. The CapBot's Zephyr flash binding is cut the same way in QEMU
-(tests/capbot/test_capbot_store.py)."""
+block. The CapBot's binding (runtime_c/swarmvm_store_zephyr.c, Zephyr's flash map API) is cut
+the same way on a Cortex-M4F in QEMU (mps2-an386), over the stand-in partition of
+firmware/capbot/flash_qemu.c (NOR rules of the nRF52840: 4 KB pages, aligned 32-bit words)."""
 
 import re
 
 import pytest
 
 import learnbuild
+from conformance import qemu_harness
 
 SOURCES = [learnbuild.RUNTIME_C / "swarmvm.c", learnbuild.RUNTIME_C / "swarmvm_store.c",
            learnbuild.PROBES / "store_probe.c"]
 NEW_RECORD = 16           # bytes of the probe's record 3, saved under the cut
-BLOCKS = {"eeprom": 1, "flash": 1, "flash4": 4}
+BLOCKS = {"eeprom": 1, "flash": 1, "flash4": 4, "zephyr": 4}
 
 
 def committed_at(block):
@@ -62,4 +64,19 @@ def test_a_cut_save_loads_the_old_or_the_new_record_on_the_avr_eeprom(tmp_path):
     elf = learnbuild.build_avr(tmp_path / "store_probe.elf", SOURCES)
     cuts, rot = outcomes(learnbuild.run_simavr(elf))
     check(cuts, ("eeprom",))
+    assert rot == "old"
+
+
+@pytest.mark.emulator
+def test_a_cut_save_loads_the_old_or_the_new_record_on_the_capbot_flash_in_qemu(tmp_path):
+    capbot = qemu_harness.CAPBOT
+    elf = qemu_harness.compile_m4(
+        [learnbuild.RUNTIME_C / "swarmvm.c", learnbuild.RUNTIME_C / "swarmvm_store.c",
+         learnbuild.RUNTIME_C / "swarmvm_store_zephyr.c", capbot / "flash_qemu.c", learnbuild.PROBES / "store_probe.c"],
+        tmp_path / "store_probe.elf", defines=["-DPROBE_ZEPHYR", "-Wconversion"],
+        includes=[learnbuild.RUNTIME_C, learnbuild.PROBES, capbot])
+    status, stdout = qemu_harness.run_qemu(elf)
+    assert status == 0, stdout
+    cuts, rot = outcomes(stdout)
+    check(cuts, ("zephyr",))
     assert rot == "old"
