@@ -85,11 +85,13 @@ TARGETS = {
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
         templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
                    ("capbot/prj.conf.j2", "prj.conf", False),
+                   ("capbot/learned.conf.j2", "learned.conf", False),
                    ("capbot/main.c.j2", "src/main.c", False),
                    ("c/tables.h.j2", "src/{name}_tables.h", False),
                    ("c/tables.c.j2", "src/{name}_tables.c", False),
                    ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES)),
+        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES + C_LEARN_COPIES + tuple(
+            (RUNTIME_C / n, n) for n in ("swarmvm_store_zephyr.h", "swarmvm_store_zephyr.c")))),
 }
 
 

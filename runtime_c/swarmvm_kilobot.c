@@ -32,7 +32,7 @@
 #endif
 static svl_policy_t policy;
 static int32_t theta[SVM_KILOBOT_THETA];
-static uint32_t words[SVL_POLICY_HEADER_WORDS + SVM_KILOBOT_THETA + 1u];     /* save/load buffer */
+static uint32_t words[SVL_KEEPER_WORDS(SVM_KILOBOT_THETA)];     /* save/load buffer */
 static svm_store_t store;
 static svl_keeper_t keeper;
 #endif
@@ -275,24 +275,16 @@ static uint32_t now(void)
 /* The learned policy chooses; its parameters come from the EEPROM store when it holds them. */
 static void learn_start(void)
 {
-    svm_set_options(&vm, SVM_POLICY_LEARNED, kilo_uid);
-    svm_reset(&vm);
-    if (svl_policy_init(&policy, &vm, theta, SVM_KILOBOT_THETA, SVM_KILOBOT_INV_TEMP_Q8, SVM_KILOBOT_RATE_Q16,
-                        SVM_KILOBOT_BASELINE_SHIFT) != 0) {
-        set_color(RGB(3, 0, 0));    /* red: the model needs more than SVM_KILOBOT_THETA */
-        return;
-    }
-    svm_set_chooser(&vm, svl_policy_choose, &policy);
     svm_store_avr_eeprom(&store, SVM_KILOBOT_EEPROM_FREE, (uint16_t)SVM_KILOBOT_SLOT_BYTES);
-    (void)svl_keeper_start(&keeper, &policy, &store, words, (uint16_t)(sizeof words / sizeof words[0]),
-                           SVM_KILOBOT_KEEP_EVERY, SVM_KILOBOT_KEEP_EPSILON);
+    if (svl_keeper_begin(&keeper, &policy, &vm, kilo_uid, theta, SVM_KILOBOT_THETA, words, &store,
+                         SVM_KILOBOT_KEEP_EVERY) < 0) {
+        set_color(RGB(3, 0, 0));    /* red: the model needs more than SVM_KILOBOT_THETA */
+    }
 }
 
 void svm_kilobot_reward(int32_t reward_q16)
 {
-    if (keeper.policy != 0) {       /* not when learn_start refused the model */
-        (void)svl_keeper_reward(&keeper, reward_q16);
-    }
+    (void)svl_keeper_reward(&keeper, reward_q16);
 }
 
 const svl_keeper_t *svm_kilobot_keeper(void)

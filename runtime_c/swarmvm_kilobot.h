@@ -31,8 +31,8 @@
  * each choice with svm_kilobot_reward(). The parameters are kept across resets and power cuts
  * in the EEPROM's two-slot store (swarmvm_learn_store.h): setup() loads the newest valid
  * record (initial parameters, all preferences 0, when there is none), and a reward saves them
- * every SVM_KILOBOT_KEEP_EVERY rewards when they moved by SVM_KILOBOT_KEEP_EPSILON or more
- * since the last save. Default 1024: at one reward per step (30.5 a second) at most a save
+ * every SVM_KILOBOT_KEEP_EVERY rewards when they moved by SVL_KEEPER_EPSILON (1.0) or more
+ * since the last save (swarmvm_learn_store.h; the policy's settings are its SVL_KEEPER_*). Default 1024: at one reward per step (30.5 a second) at most a save
  * every 34 s; each byte of the two slots is then written at most every 67 s, and the EEPROM's
  * 100,000 writes per byte last over 77 days of continuous learning. A save blocks loop() for
  * about 3.3 ms per byte written (the kilolib interrupts keep running). Not with SVM_STREAM
@@ -88,19 +88,6 @@
 #endif
 #ifndef SVM_KILOBOT_KEEP_EVERY
 #define SVM_KILOBOT_KEEP_EVERY 1024u
-#endif
-#ifndef SVM_KILOBOT_KEEP_EPSILON
-#define SVM_KILOBOT_KEEP_EPSILON 65536UL     /* 1.0 in Q16, summed over the preferences */
-#endif
-/* The policy's settings (docs/learning.md): temperature 1, rate 0.1, baseline 1/16. */
-#ifndef SVM_KILOBOT_INV_TEMP_Q8
-#define SVM_KILOBOT_INV_TEMP_Q8 256u
-#endif
-#ifndef SVM_KILOBOT_RATE_Q16
-#define SVM_KILOBOT_RATE_Q16 6554u
-#endif
-#ifndef SVM_KILOBOT_BASELINE_SHIFT
-#define SVM_KILOBOT_BASELINE_SHIFT 4u
 #endif
 /* Each of the two EEPROM slots (from SVM_KILOBOT_EEPROM_FREE; the ATmega328P has 1 KB). */
 #define SVM_KILOBOT_SLOT_BYTES SVM_STORE_SLOT_BYTES(SVL_KEEPER_RECORD_BYTES(SVM_KILOBOT_THETA), 1u)

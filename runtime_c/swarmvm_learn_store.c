@@ -46,6 +46,21 @@ int svl_keeper_start(svl_keeper_t *k, svl_policy_t *policy, const svm_store_t *s
     return svl_policy_load(policy, words, (uint16_t)(length / 4)) == 0;
 }
 
+int svl_keeper_begin(svl_keeper_t *k, svl_policy_t *policy, svm_vm_t *vm, uint32_t seed, int32_t *theta,
+                     uint16_t theta_cap, uint32_t *words, const svm_store_t *store, uint16_t every)
+{
+    k->policy = 0;
+    if (svl_policy_size(vm) > theta_cap) {
+        return -1;
+    }
+    svm_set_options(vm, (uint8_t)((vm->options & (uint8_t)~SVM_POLICY_MASK) | SVM_POLICY_LEARNED), seed);
+    svm_reset(vm);
+    (void)svl_policy_init(policy, vm, theta, theta_cap, SVL_KEEPER_INV_TEMP_Q8, SVL_KEEPER_RATE_Q16,
+                          SVL_KEEPER_BASELINE_SHIFT);
+    svm_set_chooser(vm, svl_policy_choose, policy);
+    return svl_keeper_start(k, policy, store, words, (uint16_t)SVL_KEEPER_WORDS(theta_cap), every, SVL_KEEPER_EPSILON);
+}
+
 int svl_keeper_save(svl_keeper_t *k)
 {
     uint16_t count = k->cap > UINT16_MAX / 4u ? 0u : svl_policy_save(k->policy, k->words, k->cap);
@@ -64,7 +79,7 @@ int svl_keeper_save(svl_keeper_t *k)
 
 int svl_keeper_reward(svl_keeper_t *k, int32_t reward_q16)
 {
-    if (!svl_policy_reward(k->policy, reward_q16)) {
+    if (k->policy == 0 || !svl_policy_reward(k->policy, reward_q16)) {
         return 0;
     }
     if (k->since < UINT16_MAX) {

@@ -25,8 +25,24 @@
 #include "swarmvm_learn.h"
 #include "swarmvm_store.h"
 
-/* Bytes of a saved policy with `theta` preferences (svl_policy_save's words). */
-#define SVL_KEEPER_RECORD_BYTES(theta) (4u * (SVL_POLICY_HEADER_WORDS + (theta) + 1u))
+/* Words and bytes of a saved policy with `theta` preferences (svl_policy_save's words). */
+#define SVL_KEEPER_WORDS(theta) (SVL_POLICY_HEADER_WORDS + (theta) + 1u)
+#define SVL_KEEPER_RECORD_BYTES(theta) (4u * SVL_KEEPER_WORDS(theta))
+
+/* The policy's settings a robot starts from (docs/learning.md): temperature 1, rate 0.1,
+ * baseline 1/16; and the save threshold: the preferences moved by 1.0 in all. */
+#ifndef SVL_KEEPER_INV_TEMP_Q8
+#define SVL_KEEPER_INV_TEMP_Q8 256u
+#endif
+#ifndef SVL_KEEPER_RATE_Q16
+#define SVL_KEEPER_RATE_Q16 6554u
+#endif
+#ifndef SVL_KEEPER_BASELINE_SHIFT
+#define SVL_KEEPER_BASELINE_SHIFT 4u
+#endif
+#ifndef SVL_KEEPER_EPSILON
+#define SVL_KEEPER_EPSILON 65536UL
+#endif
 
 typedef struct svl_keeper {
     svl_policy_t *policy;
@@ -43,6 +59,15 @@ typedef struct svl_keeper {
  * valid record into it: 1 when one was loaded, 0 when the initial parameters stay. */
 int svl_keeper_start(svl_keeper_t *k, svl_policy_t *policy, const svm_store_t *store, uint32_t *words,
                      uint16_t cap, uint16_t every, uint32_t epsilon);
+
+/* A robot's start-up, shared by the C targets: the learned policy chooses in `vm` (loaded;
+ * reset here with `seed`), starting from the settings above and all preferences 0, then from
+ * the store's newest valid record when there is one; `theta` holds `theta_cap` preferences,
+ * `words` SVL_KEEPER_WORDS(theta_cap). Saves every `every` rewards (svl_keeper_reward).
+ * Returns 1 (record loaded), 0 (initial parameters), or -1 when the model needs more than
+ * theta_cap (the VM keeps its previous policy then, and rewards are ignored). */
+int svl_keeper_begin(svl_keeper_t *k, svl_policy_t *policy, svm_vm_t *vm, uint32_t seed, int32_t *theta,
+                     uint16_t theta_cap, uint32_t *words, const svm_store_t *store, uint16_t every);
 
 /* svl_policy_reward, then a save when the cadence says so: 1 when it saved, 0 when not, -1
  * when the save failed (the store keeps the previous record; the next reward tries again). */
