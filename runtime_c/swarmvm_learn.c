@@ -282,6 +282,7 @@ int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_
     p->baseline_shift = baseline_shift;
     p->baseline = 0;
     p->updates = 0;
+    p->moved = 0;
     p->pending = 0;
     return 0;
 }
@@ -350,7 +351,11 @@ uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
         int32_t delta = floor_shift(step9 * diff, 8);
         for (s = 0; s < p->num_supervisors; s++) {
             int32_t *cell = &p->theta[p->rows[s] + p->ranks[i]];
+            int32_t before = *cell;
+            uint32_t change;
             *cell = clamp(*cell + delta, THETA_LIMIT);
+            change = (uint32_t)(*cell >= before ? *cell - before : before - *cell);
+            p->moved = p->moved > UINT32_MAX - change ? UINT32_MAX : p->moved + change;
         }
     }
     p->updates++;
