@@ -27,8 +27,6 @@ from swarmvm.runtime import RUNTIME_C  # noqa: E402
 C_RUNTIME = "c_runtime"
 CODEGEN = "codegen"
 FUZZERS = [*readers.READERS, CODEGEN, C_RUNTIME]
-# Limits at the format's own maxima: every image the format allows is within this build's.
-C_LIMITS = ["-DSVM_MAX_EVENTS=255", "-DSVM_MAX_SUPERVISORS=255", "-DSVM_MAX_STATES=65535"]
 SANITIZE = ["-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
 TIMEOUTS = {CODEGEN: 120}       # seconds one input may take: compiling six targets is slow
 TIMEOUT = 10
@@ -59,7 +57,7 @@ def build_c_fuzzer(out: Path) -> Path:
     exe = out / "svm_fuzz"
     out.mkdir(parents=True, exist_ok=True)
     subprocess.run(["clang", "-std=c99", "-g", "-O1", "-Wall", "-Wextra", "-Werror", "-pedantic", *SANITIZE,
-                    *C_LIMITS, "-I", str(RUNTIME_C), str(HERE / "svm_fuzz.c"), str(RUNTIME_C / "swarmvm.c"),
+                    *readers.C_LIMITS, "-I", str(RUNTIME_C), str(HERE / "svm_fuzz.c"), str(RUNTIME_C / "swarmvm.c"),
                     "-o", str(exe)], check=True)
     return exe
 

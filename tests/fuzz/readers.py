@@ -11,15 +11,17 @@ cannot run (an index out of range) is a finding too.
 The same functions replay the regression cases (tests/fuzz/test_fuzz_regressions.py), so a
 kept finding runs exactly as the fuzzer ran it, without a fuzzer."""
 
+import ctypes
 import functools
 import os
+import subprocess
 import tempfile
 from pathlib import Path
 from typing import Callable, Dict
 
 from swarmvm import api
 from swarmvm.errors import InputError
-from swarmvm.runtime import image_format, python_vm
+from swarmvm.runtime import RUNTIME_C, image_format, python_vm
 
 F = image_format()
 VM = python_vm()
@@ -29,6 +31,8 @@ REGRESSIONS = Path(__file__).resolve().parent / "regressions"
 SCRIPT_SUPERVISOR = CORPUS / "openswarm" / "energy_worker.yaml"
 STEPS = 16          # steps run on an image that loads
 POLICIES = ("uniform", "first", "weighted")
+# The C runtime's limits at the format's own maxima: every image the format allows is within them.
+C_LIMITS = ["-DSVM_MAX_EVENTS=255", "-DSVM_MAX_SUPERVISORS=255", "-DSVM_MAX_STATES=65535"]
 
 
 @functools.lru_cache(maxsize=None)
@@ -90,15 +94,31 @@ def _supervisor(suffix: str) -> Callable[[bytes], None]:
     return target
 
 
+@functools.lru_cache(maxsize=None)
+def _c_validate():
+    """The C runtime's svm_validate (runtime_c/swarmvm.c as a shared library, built once)."""
+    library = _workdir() / "libswarmvm.so"
+    subprocess.run(["gcc", "-std=c99", "-O1", "-shared", "-fPIC", *C_LIMITS, "-I", str(RUNTIME_C),
+                    str(RUNTIME_C / "swarmvm.c"), "-o", str(library)], check=True)
+    validate = ctypes.CDLL(str(library)).svm_validate
+    validate.argtypes, validate.restype = [ctypes.c_char_p, ctypes.c_uint16, ctypes.c_uint8], ctypes.c_int
+    return validate
+
+
 def svm_runtime(data: bytes) -> None:
-    """The Python runtime's reader (swarmvm_format.Image.parse): an image, or an ImageError.
-    Each input is tried as it is and resealed (length and checksum fitted)."""
+    """The Python runtime's reader (swarmvm_format.Image.parse): an image, or an ImageError
+    with the code the C runtime's reader gives the same bytes (``check`` must not accept what
+    a robot refuses). Each input is tried as it is and resealed (length and checksum fitted)."""
     for raw in dict.fromkeys((data, resealed(data))):
         try:
-            image = F.Image.parse(raw)
-        except F.ImageError:
-            continue
-        run_image(image)
+            image, code = F.Image.parse(raw), F.ErrorCode.OK
+        except F.ImageError as exc:
+            image, code = None, exc.code
+        if len(raw) <= F.MAX_IMAGE_SIZE:
+            c_code = _c_validate()(raw, len(raw), 0)
+            assert c_code == code, "the C reader gives %d, the Python reader %d (%s)" % (c_code, code, code.name)
+        if image is not None:
+            run_image(image)
 
 
 def svm_swarmvm(data: bytes) -> None:
@@ -164,3 +184,4 @@ def cleanup() -> None:
         entry.unlink()
     os.rmdir(folder)
     _workdir.cache_clear()
+    _c_validate.cache_clear()

@@ -19,6 +19,13 @@ SUFFIXES = {"yaml": ".yaml", "xml": ".xml", "xmd": ".xmd", "nza": ".nza", "gen":
             "svm_runtime": ".svm"}
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _input_files():
+    """The readers write their inputs into a folder of this process: removed afterwards."""
+    yield
+    readers.cleanup()
+
+
 def _id(path: Path) -> str:
     return "%s/%s" % (path.parent.name, path.name)
 
