@@ -71,10 +71,15 @@ def seeds(fuzzer: str) -> dict:
     return readers.seeds("svm" if fuzzer == C_RUNTIME else fuzzer)
 
 
+# libFuzzer dictionaries (tests/fuzz/dicts): the keys and tokens of each input language.
+DICTIONARIES = {"yaml": "yaml", "xml": "xml", "xmd": "xml", "nza": "nza", "gen": "gen", "script": "script"}
+
+
 def command(fuzzer: str, work: Path) -> list:
     if fuzzer == C_RUNTIME:
         return [str(build_c_fuzzer(work / C_RUNTIME / "bin"))]
-    return [sys.executable, str(HERE / "run.py"), fuzzer]
+    words = ["-dict=%s" % (HERE / "dicts" / (DICTIONARIES[fuzzer] + ".dict"))] if fuzzer in DICTIONARIES else []
+    return [sys.executable, str(HERE / "run.py"), fuzzer, *words]
 
 
 def run(fuzzer: str, seconds: int, work: Path) -> Result:
