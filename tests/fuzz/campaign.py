@@ -31,6 +31,8 @@ SANITIZE = ["-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
 TIMEOUTS = {CODEGEN: 120}       # seconds one input may take: compiling six targets is slow
 TIMEOUT = 10
 RSS_LIMIT_MB = 2048
+# What libFuzzer leaves in -artifact_prefix for a finding (not its slow-unit-* notes).
+FINDINGS = ("crash-", "timeout-", "oom-", "leak-")
 RUNS = re.compile(r"^(?:Done (\d+) runs in|stat::number_of_executed_units: (\d+))", re.MULTILINE)
 
 
@@ -100,7 +102,7 @@ def run(fuzzer: str, seconds: int, work: Path) -> Result:
                               stdout=out, stderr=subprocess.STDOUT)
     text = log.read_text(errors="replace")
     runs = max((int(a or b) for a, b in RUNS.findall(text)), default=0)
-    found = sorted(set(findings.iterdir()) - before)
+    found = sorted(p for p in set(findings.iterdir()) - before if p.name.startswith(FINDINGS))
     if fuzzer == CODEGEN:       # each with the supervisor it decodes to: the regression case to keep
         from fuzz import gen_target
         for path in list(found):

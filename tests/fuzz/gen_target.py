@@ -51,7 +51,8 @@ printf exit""".split()
 AWKWARD = (C_CPP_WORDS + sorted(keyword.kwlist) + sorted(keyword.softkwlist)
            + ["stream", "x", "_x", "received_x", "svm", "svm_sct", "NULL", "main", "kilo_x", "swarmvm", "__x",
               "_", "", "1a", "EV_x", "a" * 255, "b" * 254 + "_", "\u00e9t\u00e9", "na\u00efve"])
-MODEL_NAMES = PLAIN[:4] + AWKWARD + ["a-b", "m" * 200]
+PLAIN_MODEL_NAMES = ["a", "worker", "m2"]
+MODEL_NAMES = AWKWARD + ["a-b", "m" * 200, "time", "signal", "FILE", "size_t", "printf", "stdin", "kilo", "svm_x"]
 PROBABILITIES = (Fraction(1), Fraction(1, 2), Fraction(1, 3), Fraction(0))
 LIMITS = re.compile(r"-DSVM_MAX_\w+=\d+")
 
@@ -65,7 +66,10 @@ def decode(data: bytes):
     transition is drawn from them. The model is not checked here: swarmvm's reader is."""
     fdp = atheris.FuzzedDataProvider(data)
     n = fdp.ConsumeIntInRange(1, MAX_EVENTS)
-    events = tuple(_pick(fdp, PLAIN if fdp.ConsumeBool() else AWKWARD) for _ in range(n))
+    events: list = []
+    for k in range(n):      # a name drawn twice becomes a plain one: duplicates only test the reader
+        name = _pick(fdp, PLAIN if fdp.ConsumeBool() else AWKWARD)
+        events.append(name if name not in events else "e%d" % k)
     controllable = tuple(fdp.ConsumeBool() for _ in range(n))
     public = tuple(fdp.ConsumeBool() for _ in range(n))
     probabilistic = fdp.ConsumeBool()
@@ -78,8 +82,8 @@ def decode(data: bytes):
                              for e in sorted(alphabet) if fdp.ConsumeBool())
                        for _ in range(count))
         supervisors.append(CanonicalSupervisor(alphabet, states))
-    model = Model("fuzz.yaml", events, controllable, public, tuple(supervisors), probabilistic)
-    return model, _pick(fdp, MODEL_NAMES)
+    model = Model("fuzz.yaml", tuple(events), controllable, public, tuple(supervisors), probabilistic)
+    return model, _pick(fdp, PLAIN_MODEL_NAMES if fdp.ConsumeBool() else MODEL_NAMES)
 
 
 @functools.lru_cache(maxsize=None)
