@@ -139,9 +139,11 @@ def compile_target(target: str, folder: Path, scratch: Path) -> list:
     raise AssertionError("no compiler known for target %s" % target)
 
 
-def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> None:
+def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> list:
     """The property for one supervisor.yaml text generated under the model name ``name`` for
-    each of ``targets``; AssertionError naming the target otherwise."""
+    each of ``targets``; AssertionError naming the target otherwise. The targets whose code
+    was generated and compiled (the others refused the model)."""
+    compiled = []
     scratch = Path(tempfile.mkdtemp(prefix="swarmvm-fuzz-gen-"))
     try:
         supervisor = scratch / "fuzz.yaml"
@@ -157,8 +159,10 @@ def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> No
             complaints = compile_target(target, out, scratch)
             assert not complaints, "%s (model %r): generated code does not compile:\n%s\n%s" % (
                 target, name, "\n".join(complaints)[-3000:], text)
+            compiled.append(target)
     finally:
         shutil.rmtree(scratch)
+    return compiled
 
 
 REGRESSION_NAME = re.compile(r"\A# swarmvm gen --name (.*)\n")
@@ -172,16 +176,22 @@ def regression_text(data: bytes) -> str:
     return "# swarmvm gen --name %s\n%s" % (name, to_yaml(model))
 
 
-def check_regression(text: str) -> None:
-    """Replay a kept case (:func:`regression_text`)."""
+def check_regression(text: str) -> list:
+    """Replay a kept case (:func:`regression_text`); the targets it compiled for."""
     match = REGRESSION_NAME.match(text)
     assert match, "a codegen case starts with '# swarmvm gen --name NAME'"
-    check_supervisor(text, match.group(1))
+    return check_supervisor(text, match.group(1))
+
+
+def compile_input(data: bytes) -> list:
+    """The property for the fuzzer's bytes; the targets they compiled for."""
+    model, name = decode(data)
+    return check_supervisor(to_yaml(model), name)
 
 
 def one_input(data: bytes) -> None:
-    model, name = decode(data)
-    check_supervisor(to_yaml(model), name)
+    """The fuzz target (atheris wants nothing back)."""
+    compile_input(data)
 
 
 def seeds() -> dict:
