@@ -28,6 +28,7 @@ import atheris
 from argos.argos_project import find_argos
 from c.test_c_warnings import ARM, COMPILERS, compile_only
 from conformance.qemu_harness import CAPBOT
+from fuzz.readers import refused
 from kilobot.needs import kilolib_or_skip
 from swarmvm import api
 from swarmvm.errors import InputError
@@ -153,7 +154,7 @@ def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> li
             try:
                 api.generate_target([str(supervisor)], target, str(out), name=name)
             except InputError as exc:
-                assert "\n" not in str(exc), "%s: a two-line error: %r" % (target, str(exc))
+                refused(exc)
                 assert not out.exists(), "%s: refused (%s) but wrote %s" % (target, exc, sorted(out.rglob("*")))
                 continue
             complaints = compile_target(target, out, scratch)

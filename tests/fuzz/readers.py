@@ -68,8 +68,9 @@ def _scripts(image) -> list:
 
 
 def refused(exc: InputError) -> None:
-    """An InputError is the property only when it is one line (the CLI prints it as one)."""
-    assert "\n" not in str(exc) and "\r" not in str(exc), "a refusal of more than one line: %r" % str(exc)
+    """An InputError is the property only when it is one printable line (the CLI prints it as
+    one: no line break, and no control character of the input reaches the terminal)."""
+    assert str(exc).isprintable(), "a refusal that is not one printable line: %r" % str(exc)
 
 
 def run_image(image) -> None:
