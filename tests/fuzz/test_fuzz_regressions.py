@@ -2,8 +2,8 @@
 
 A case runs through the very function the fuzzer ran (tests/fuzz/readers.py, gen_target.py), so
 the property it broke is checked again; a reader's case also goes through ``swarmvm check`` on
-the command line, which must load it or refuse it with one ``swarmvm: error:`` line and exit
-status 2. The C runtime's cases (c_runtime/) run once each through the libFuzzer harness."""
+the command line (``check``; ``trace`` for a script), which must load it or refuse it with one
+``swarmvm: error:`` line and exit status 2. The C runtime's cases (c_runtime/) run once each through the libFuzzer harness."""
 
 import subprocess
 from pathlib import Path
@@ -16,7 +16,7 @@ from swarmvm.cli import main
 
 CASES = sorted(p for p in readers.REGRESSIONS.glob("*/*") if p.is_file())
 SUFFIXES = {"yaml": ".yaml", "xml": ".xml", "xmd": ".xmd", "nza": ".nza", "gen": ".gen", "svm": ".svm",
-            "svm_runtime": ".svm"}
+            "svm_runtime": ".svm", "script": ".txt"}
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -44,12 +44,16 @@ def test_reader_case_holds_the_property(case):
 def test_reader_case_is_one_line_on_the_command_line(case, tmp_path):
     path = tmp_path / (case.stem + SUFFIXES[case.parent.name])
     path.write_bytes(case.read_bytes())
-    result = CliRunner().invoke(main, ["check", str(path)])
+    if case.parent.name == "script":
+        command = ["trace", str(readers.SCRIPT_SUPERVISOR), "--script", str(path)]
+    else:
+        command = ["check", str(path)]
+    result = CliRunner().invoke(main, command)
     assert result.exit_code in (0, 2), result.output
     if result.exit_code == 2:
         assert result.stderr.startswith("swarmvm: error: %s" % path.name) or \
             result.stderr.startswith("swarmvm: error: %s" % path), result.stderr
-        assert result.stderr.count("\n") == 1, result.stderr
+        assert result.stderr.count("\n") == 1 and result.stderr[:-1].isprintable(), result.stderr
 
 
 @pytest.mark.parametrize("case", [p for p in CASES if p.parent.name == campaign.CODEGEN], ids=_id)
