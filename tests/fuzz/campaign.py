@@ -3,7 +3,8 @@
 ``python tests/fuzz/campaign.py [--seconds N] [--work DIR] [FUZZER...]``: every fuzzer by
 default, the atheris targets (each reader of tests/fuzz/readers.py, and ``codegen``,
 tests/fuzz/gen_target.py) and ``c_runtime``, the libFuzzer harness tests/fuzz/svm_fuzz.c over
-the C runtime, built here with clang and AddressSanitizer and UndefinedBehaviorSanitizer.
+the C runtime, built here with clang and AddressSanitizer and UndefinedBehaviorSanitizer
+(``c_runtime_exact``: the same with a Kilobot-like build's exact masks and one-byte states).
 
 Each fuzzer keeps its corpus in DIR/<fuzzer>/corpus (seeded on first use, grown by every run)
 and its findings in DIR/<fuzzer>/findings, and its output in DIR/<fuzzer>/fuzz.log (a file,
@@ -25,8 +26,14 @@ from fuzz import readers  # noqa: E402
 from swarmvm.runtime import RUNTIME_C  # noqa: E402
 
 C_RUNTIME = "c_runtime"
+C_RUNTIME_EXACT = "c_runtime_exact"
 CODEGEN = "codegen"
-FUZZERS = [*readers.READERS, CODEGEN, C_RUNTIME]
+# The C harness's builds: the format's maxima as limits (every image the format allows fits),
+# and a Kilobot-like build with exact masks (the unrolled step of SVM_MASK_EXACT, one-byte states).
+C_BUILDS = {C_RUNTIME: readers.C_LIMITS,
+            C_RUNTIME_EXACT: ["-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=8", "-DSVM_MAX_STATES=256",
+                              "-DSVM_MASK_EXACT=1"]}
+FUZZERS = [*readers.READERS, CODEGEN, *C_BUILDS]
 SANITIZE = ["-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
 TIMEOUTS = {CODEGEN: 120}       # seconds one input may take: compiling six targets is slow
 TIMEOUT = 10
@@ -51,15 +58,16 @@ class Result:
     def summary(self) -> str:
         state = "ok" if self.ok() else "FINDING" if self.findings else "FAILED (exit %d)" % self.status
         found = "".join("\n    %s" % path for path in self.findings)
-        return "%-12s %-8s %8d runs   %s%s" % (self.fuzzer, state, self.runs, self.log, found)
+        return "%-16s %-8s %8d runs   %s%s" % (self.fuzzer, state, self.runs, self.log, found)
 
 
-def build_c_fuzzer(out: Path) -> Path:
-    """The libFuzzer program over runtime_c/swarmvm.c (clang; Debian's libclang-rt-*-dev)."""
-    exe = out / "svm_fuzz"
+def build_c_fuzzer(out: Path, build: str = C_RUNTIME) -> Path:
+    """The libFuzzer program over runtime_c/swarmvm.c, one of C_BUILDS (clang; Debian's
+    libclang-rt-*-dev)."""
+    exe = out / build
     out.mkdir(parents=True, exist_ok=True)
     subprocess.run(["clang", "-std=c99", "-g", "-O1", "-Wall", "-Wextra", "-Werror", "-pedantic", *SANITIZE,
-                    *readers.C_LIMITS, "-I", str(RUNTIME_C), str(HERE / "svm_fuzz.c"), str(RUNTIME_C / "swarmvm.c"),
+                    *C_BUILDS[build], "-I", str(RUNTIME_C), str(HERE / "svm_fuzz.c"), str(RUNTIME_C / "swarmvm.c"),
                     "-o", str(exe)], check=True)
     return exe
 
@@ -70,7 +78,7 @@ def seeds(fuzzer: str) -> dict:
     if fuzzer == CODEGEN:
         from fuzz import gen_target
         return gen_target.seeds()
-    return readers.seeds("svm" if fuzzer == C_RUNTIME else fuzzer)
+    return readers.seeds("svm" if fuzzer in C_BUILDS else fuzzer)
 
 
 # libFuzzer dictionaries (tests/fuzz/dicts): the keys and tokens of each input language.
@@ -78,8 +86,8 @@ DICTIONARIES = {"yaml": "yaml", "xml": "xml", "xmd": "xml", "nza": "nza", "gen":
 
 
 def command(fuzzer: str, work: Path) -> list:
-    if fuzzer == C_RUNTIME:
-        return [str(build_c_fuzzer(work / C_RUNTIME / "bin"))]
+    if fuzzer in C_BUILDS:
+        return [str(build_c_fuzzer(work / fuzzer / "bin", fuzzer))]
     words = ["-dict=%s" % (HERE / "dicts" / (DICTIONARIES[fuzzer] + ".dict"))] if fuzzer in DICTIONARIES else []
     return [sys.executable, str(HERE / "run.py"), fuzzer, *words]
 

@@ -1,6 +1,7 @@
 /* libFuzzer harness over the C runtime's image reader and step (runtime_c/swarmvm.c), built with
- * clang -fsanitize=fuzzer,address,undefined and the format's own maxima as limits
- * (tests/fuzz/libfuzzer.py builds it; docs/fuzzing.md).
+ * clang -fsanitize=fuzzer,address,undefined, once with the format's own maxima as limits and
+ * once like a Kilobot build, exact masks and one-byte states (tests/fuzz/campaign.py's C_BUILDS;
+ * docs/fuzzing.md).
  *
  * An input is a table image. It is tried as it is and resealed (length field and checksum
  * fitted, so that mutations reach the layout checks). An image svm_load accepts is then run

@@ -73,12 +73,13 @@ def test_codegen_seeds_refuse_or_compile():
     assert compiled == set(TARGETS)
 
 
-def test_c_runtime_cases_and_seeds_replay_clean(tmp_path):
-    """The harness run once on each kept case and each seed image (so it runs on good images
-    too, whether or not a case is kept): no sanitizer report, no invariant broken."""
-    exe = campaign.build_c_fuzzer(tmp_path)
-    inputs = [p for p in CASES if p.parent.name == campaign.C_RUNTIME]
-    for name, data in campaign.seeds(campaign.C_RUNTIME).items():
+@pytest.mark.parametrize("build", sorted(campaign.C_BUILDS))
+def test_c_runtime_cases_and_seeds_replay_clean(build, tmp_path):
+    """Each build of the harness run once on each kept case and each seed image (so it runs
+    on good images too, whether or not a case is kept): no sanitizer report, no invariant broken."""
+    exe = campaign.build_c_fuzzer(tmp_path, build)
+    inputs = [p for p in CASES if p.parent.name in campaign.C_BUILDS]
+    for name, data in campaign.seeds(build).items():
         inputs.append(tmp_path / name)
         inputs[-1].write_bytes(data)
     log = tmp_path / "replay.log"

@@ -11,11 +11,11 @@ from fuzz import campaign
 
 pytestmark = pytest.mark.slow
 
-SECONDS = {campaign.CODEGEN: 10, campaign.C_RUNTIME: 5}
+SECONDS = {campaign.CODEGEN: 10, campaign.C_RUNTIME: 5, campaign.C_RUNTIME_EXACT: 3}
 READER_SECONDS = 3
 # Inputs each must at least have run (libFuzzer's count includes the seeds): its seeds and some
 # mutated inputs: far fewer than even a loaded machine runs in the time given.
-MIN_MUTATIONS = {campaign.CODEGEN: 1, campaign.C_RUNTIME: 500}
+MIN_MUTATIONS = {campaign.CODEGEN: 1, campaign.C_RUNTIME: 500, campaign.C_RUNTIME_EXACT: 500}
 READER_MIN_MUTATIONS = 20
 
 
