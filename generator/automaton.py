@@ -97,13 +97,17 @@ class AutomatonBuilder:
 
 def parse_xml(path: str, raw: bytes) -> Element:
     """Parse XML without expanding entities: a DOCTYPE, an entity or an external reference is
-    refused (no billion laughs, no file inclusion)."""
+    refused (no billion laughs, no file inclusion). The encoding a declaration names is looked
+    up among Python's codecs by expat: an unknown one (LookupError), a multi-byte or a non-text
+    codec (ValueError, UnicodeError) is bad input too."""
     try:
         return SafeET.fromstring(raw, forbid_dtd=True, forbid_entities=True, forbid_external=True)
     except ParseError as exc:
         raise InputError(path, "", "not valid XML: %s" % exc)
-    except DefusedXmlException:
+    except DefusedXmlException:     # a ValueError: before the encoding's
         raise InputError(path, "", "a DOCTYPE or entity declaration is not accepted")
+    except (LookupError, ValueError) as exc:
+        raise InputError(path, "", "not valid XML: its encoding declaration cannot be used (%s)" % show_value(str(exc)))
 
 
 def read_fsa_xml(path: str) -> Tuple[Element, int]:

@@ -16,7 +16,14 @@ class InputError(Exception):
 
     def __str__(self):
         parts = [self.file, self.key, self.where, self.message]
-        return ": ".join(part for part in parts if part)
+        return ": ".join(printable(part) for part in parts if part)
+
+
+def printable(text):
+    """``text`` with each unprintable character (a line break, an escape, NUL) written as its
+    Python escape: names and values come from the input, and the error must stay one line that
+    sends nothing but text to the terminal."""
+    return text if text.isprintable() else "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def ascii_int(text, digits=9):

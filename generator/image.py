@@ -15,13 +15,15 @@ FORMAT = runtime.image_format()
 
 
 def pack(tables, source, names=True, order=None):
-    """The image bytes; InputError when the model is too large for the format. ``order`` (each
-    event's index in the source file, each global state's number in it) adds the order section
-    (docs/image-format.md)."""
+    """The image bytes; InputError when the model is too large for the format, or has no events
+    (automata may declare none; the format needs one). ``order`` (each event's index in the
+    source file, each global state's number in it) adds the order section (docs/image-format.md)."""
     limits = [("events", tables.num_events, FORMAT.MAX_EVENTS),
               ("supervisors", tables.num_supervisors, FORMAT.MAX_SUPERVISORS),
               ("states", tables.num_states, FORMAT.MAX_STATES),
               ("transitions", tables.num_transitions, FORMAT.MAX_TRANSITIONS)]
+    if tables.num_events == 0:
+        raise InputError(source, "events", "no events: a supervisor set needs at least one")
     for what, count, limit in limits:
         if count > limit:
             raise InputError(source, "", "%d %s, over the image format's limit of %d" % (count, what, limit))

@@ -114,6 +114,9 @@ def load_supervisor(path):
         doc = yaml.load(text, Loader=_NoAliasLoader)
     except RecursionError:
         raise InputError(name, "", "not a supervisor: lists or mappings nested too deeply")
+    except yaml.reader.ReaderError as exc:     # its own message takes two lines
+        raise InputError(name, "", "not valid YAML at line %d: character #x%04x is not allowed"
+                         % (text.count("\n", 0, exc.position) + 1, exc.character))
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = " at line %d" % (mark.line + 1) if mark is not None else ""

@@ -12,9 +12,11 @@ from .lua_literal import LuaSyntaxError, parse_lua_table
 
 
 def _list(path, table, key):
-    """``table[key]`` as a Python list: a Lua sequence 1..n (an absent key is empty)."""
+    """``table[key]`` as a Python list: a Lua sequence 1..n (an absent key is empty). Its keys
+    may be anything Lua allows (strings, booleans, numbers mixed): only integers 1..n pass."""
     value = table.get(key, {})
-    if not isinstance(value, dict) or sorted(value) != list(range(1, len(value) + 1)):
+    if not isinstance(value, dict) or any(type(k) is not int for k in value) \
+            or set(value) != set(range(1, len(value) + 1)):
         raise InputError(path, key, "expected a list of tables indexed 1..n")
     for i in value:
         if not isinstance(value[i], dict):
