@@ -11,6 +11,18 @@
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
+/* Load-time code (checks, life cycle, names, bindings) on a microcontroller: optimised for
+ * size whatever the build's -O, so that -O3 (kilolib's flags) spends flash on the step only.
+ * GCC compiles a `cold` function as if with -Os. */
+#if defined(__GNUC__) && (defined(__AVR__) || (defined(__arm__) && !defined(__linux__)))
+#define SVM_COLD __attribute__((cold, noinline))
+#else
+#define SVM_COLD
+#endif
+
+/* A swap moves what is bound by event name (runtime bindings, svm_bind_priority's list). */
+#define REBIND_BY_NAME (SVM_WITH_NAMES && (SVM_WITH_BINDINGS || SVM_WITH_FIRST))
+
 /* ---- image access ------------------------------------------------------------------------
  * An image is read where it lives: `source` is SVM_SOURCE_RAM, _FLASH or _EEPROM. On AVR the
  * build chooses which sources it reads (SVM_IMAGE_SOURCES): SVM_FLASH_ONLY reads every byte
@@ -28,12 +40,12 @@
 #define READ(image, source, at) ((void)(source), (image)[at])
 #endif
 
-static uint8_t rd_raw(const uint8_t *image, uint8_t source, uint16_t at)
+static SVM_COLD uint8_t rd_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint8_t)READ(image, source, at);
 }
 
-static uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
+static SVM_COLD uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint16_t)(rd_raw(image, source, at) | ((uint16_t)rd_raw(image, source, (uint16_t)(at + 1u)) << 8));
 }
@@ -98,9 +110,9 @@ static SVM_INLINE uint8_t popcount8(uint8_t x)
 #else
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
-    x = (uint8_t)(x - ((x >> 1) & 0x55u));
-    x = (uint8_t)((x & 0x33u) + ((x >> 2) & 0x33u));
-    return (uint8_t)((x + (x >> 4)) & 0x0Fu);
+    x = (uint8_t)(x - (uint8_t)((x >> 1) & 0x55u));
+    x = (uint8_t)((uint8_t)(x & 0x33u) + (uint8_t)((x >> 2) & 0x33u));
+    return (uint8_t)((uint8_t)(x + (uint8_t)(x >> 4)) & 0x0Fu);
 }
 #endif
 
@@ -339,89 +351,153 @@ static SVM_INLINE uint8_t mask_count(mask_t a)
 /* The next event of the cursor (which has one), then visited. */
 static SVM_INLINE uint8_t cursor_next(cursor_t *c)
 {
-    uint8_t low, event;
+    uint8_t low;
     while ((low = cursor_byte(c)) == 0u) {
         cursor_skip_byte(c);
     }
     low = (uint8_t)(low & (uint8_t)-low);
     cursor_clear(c, low);
-    for (event = c->base; low != 1u; low = (uint8_t)(low >> 1)) {
-        event++;
-    }
-    return event;
+    return (uint8_t)(c->base + popcount8((uint8_t)(low - 1u)));    /* the bits below it */
 }
 
 /* ---- checksum and validation ------------------------------------------------------------- */
 
-/* CRC-16/MCRF4XX a byte at a time, without a table and without branches: the byte-wise form
- * of the reflected CCITT polynomial that avr-libc's _crc_ccitt_update also uses (8 shifts and
- * xors per byte instead of 8 conditional steps). */
-static uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
+/* CRC-16/MCRF4XX, a byte at a time. The byte-wise form of the reflected CCITT polynomial that
+ * avr-libc's _crc_ccitt_update also uses: `d` = the byte xor the low byte of the sum, then
+ * crc = (crc >> 8) ^ T[d], T[d] = (e << 8) ^ (e << 3) ^ (e >> 4) with e = d ^ (d << 4) (mod
+ * 256). Where flash is not counted in bytes (SVM_CRC_TABLE, off on microcontrollers) T is a
+ * 512-byte table; elsewhere it is computed: a few shifts and no branch. */
+#ifndef SVM_CRC_TABLE
+#if defined(__AVR__) || (defined(__arm__) && !defined(__linux__))
+#define SVM_CRC_TABLE 0
+#else
+#define SVM_CRC_TABLE 1
+#endif
+#endif
+
+#if SVM_CRC_TABLE
+static const uint16_t crc_table[256] = {    /* T[0 .. 255] */
+    0x0000, 0x1189, 0x2312, 0x329B, 0x4624, 0x57AD, 0x6536, 0x74BF,
+    0x8C48, 0x9DC1, 0xAF5A, 0xBED3, 0xCA6C, 0xDBE5, 0xE97E, 0xF8F7,
+    0x1081, 0x0108, 0x3393, 0x221A, 0x56A5, 0x472C, 0x75B7, 0x643E,
+    0x9CC9, 0x8D40, 0xBFDB, 0xAE52, 0xDAED, 0xCB64, 0xF9FF, 0xE876,
+    0x2102, 0x308B, 0x0210, 0x1399, 0x6726, 0x76AF, 0x4434, 0x55BD,
+    0xAD4A, 0xBCC3, 0x8E58, 0x9FD1, 0xEB6E, 0xFAE7, 0xC87C, 0xD9F5,
+    0x3183, 0x200A, 0x1291, 0x0318, 0x77A7, 0x662E, 0x54B5, 0x453C,
+    0xBDCB, 0xAC42, 0x9ED9, 0x8F50, 0xFBEF, 0xEA66, 0xD8FD, 0xC974,
+    0x4204, 0x538D, 0x6116, 0x709F, 0x0420, 0x15A9, 0x2732, 0x36BB,
+    0xCE4C, 0xDFC5, 0xED5E, 0xFCD7, 0x8868, 0x99E1, 0xAB7A, 0xBAF3,
+    0x5285, 0x430C, 0x7197, 0x601E, 0x14A1, 0x0528, 0x37B3, 0x263A,
+    0xDECD, 0xCF44, 0xFDDF, 0xEC56, 0x98E9, 0x8960, 0xBBFB, 0xAA72,
+    0x6306, 0x728F, 0x4014, 0x519D, 0x2522, 0x34AB, 0x0630, 0x17B9,
+    0xEF4E, 0xFEC7, 0xCC5C, 0xDDD5, 0xA96A, 0xB8E3, 0x8A78, 0x9BF1,
+    0x7387, 0x620E, 0x5095, 0x411C, 0x35A3, 0x242A, 0x16B1, 0x0738,
+    0xFFCF, 0xEE46, 0xDCDD, 0xCD54, 0xB9EB, 0xA862, 0x9AF9, 0x8B70,
+    0x8408, 0x9581, 0xA71A, 0xB693, 0xC22C, 0xD3A5, 0xE13E, 0xF0B7,
+    0x0840, 0x19C9, 0x2B52, 0x3ADB, 0x4E64, 0x5FED, 0x6D76, 0x7CFF,
+    0x9489, 0x8500, 0xB79B, 0xA612, 0xD2AD, 0xC324, 0xF1BF, 0xE036,
+    0x18C1, 0x0948, 0x3BD3, 0x2A5A, 0x5EE5, 0x4F6C, 0x7DF7, 0x6C7E,
+    0xA50A, 0xB483, 0x8618, 0x9791, 0xE32E, 0xF2A7, 0xC03C, 0xD1B5,
+    0x2942, 0x38CB, 0x0A50, 0x1BD9, 0x6F66, 0x7EEF, 0x4C74, 0x5DFD,
+    0xB58B, 0xA402, 0x9699, 0x8710, 0xF3AF, 0xE226, 0xD0BD, 0xC134,
+    0x39C3, 0x284A, 0x1AD1, 0x0B58, 0x7FE7, 0x6E6E, 0x5CF5, 0x4D7C,
+    0xC60C, 0xD785, 0xE51E, 0xF497, 0x8028, 0x91A1, 0xA33A, 0xB2B3,
+    0x4A44, 0x5BCD, 0x6956, 0x78DF, 0x0C60, 0x1DE9, 0x2F72, 0x3EFB,
+    0xD68D, 0xC704, 0xF59F, 0xE416, 0x90A9, 0x8120, 0xB3BB, 0xA232,
+    0x5AC5, 0x4B4C, 0x79D7, 0x685E, 0x1CE1, 0x0D68, 0x3FF3, 0x2E7A,
+    0xE70E, 0xF687, 0xC41C, 0xD595, 0xA12A, 0xB0A3, 0x8238, 0x93B1,
+    0x6B46, 0x7ACF, 0x4854, 0x59DD, 0x2D62, 0x3CEB, 0x0E70, 0x1FF9,
+    0xF78F, 0xE606, 0xD49D, 0xC514, 0xB1AB, 0xA022, 0x92B9, 0x8330,
+    0x7BC7, 0x6A4E, 0x58D5, 0x495C, 0x3DE3, 0x2C6A, 0x1EF1, 0x0F78
+};
+#endif
+
+static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
-    uint16_t crc = 0xFFFFu;
-    uint16_t i;
-    uint8_t d;
+    uint16_t crc = 0xFFFFu, i;
     for (i = 0; i < length; i++) {
-        d = (uint8_t)(rd_raw(image, source, i) ^ (uint8_t)crc);
-        d = (uint8_t)(d ^ (uint8_t)(d << 4));
-        crc = (uint16_t)((((uint16_t)d << 8) | (crc >> 8)) ^ (uint8_t)(d >> 4) ^ ((uint16_t)d << 3));
+        uint8_t d = (uint8_t)(rd_raw(image, source, i) ^ (uint8_t)crc);
+#if SVM_CRC_TABLE
+        crc = (uint16_t)((crc >> 8) ^ crc_table[d]);
+#else
+        uint8_t e = (uint8_t)(d ^ (uint8_t)(d << 4));
+        crc = (uint16_t)((crc >> 8) ^ ((uint16_t)e << 8) ^ (uint16_t)((uint16_t)e << 3) ^ (uint8_t)(e >> 4));
+#endif
     }
     return crc;
 }
 
-/* What svm_load needs to know once an image has been accepted. */
+/* What svm_load needs to know once an image has been accepted: section offsets and header. */
 typedef struct layout {
     uint16_t states_at, targets_at, probs_at, names_at;
+    uint8_t header[SVM_HEADER_SIZE];
 } layout_t;
 
-/* Whether the event mask of `m` bytes at `at` has a bit set at or above event `e` (in its last
- * byte's padding): an event the image does not have. */
-static uint8_t beyond_events(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
+/* `count` bytes of an image from `at` into `out` (RAM): the checks below read a record once
+ * into locals instead of calling the reader per field. */
+static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source, uint16_t at, uint8_t count)
+{
+    for (; count != 0u; count--, at++) {
+        *out++ = rd_raw(image, source, at);
+    }
+}
+
+/* The little-endian u16 at `p` in RAM. */
+static SVM_INLINE uint16_t le16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
+}
+
+/* Whether byte `last` of an event mask (its last byte) has a bit at or above event `e` (in the
+ * padding): an event the image does not have. */
+static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)
 {
     uint8_t used = (uint8_t)(e & 7u);
-    return used != 0u && (rd_raw(image, source, (uint16_t)(at + m - 1u)) >> used) != 0u;
+    return used != 0u && (uint8_t)(last >> used) != 0u;
+}
+
+/* Whether the event mask of `m` bytes at `at` has a bit beyond the image's `e` events. */
+static SVM_COLD uint8_t mask_beyond(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
+{
+    return beyond_events(rd_raw(image, source, (uint16_t)(at + m - 1u)), e);
 }
 
 /* Every index the step follows must stay inside the image, every event mask inside the image's
- * events: check them once here. */
-static int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
+ * events: check them once here. Supervisor and state records are
+ * walked in order (the states of supervisor s follow those of s - 1), so no record offset is
+ * multiplied out. */
+static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
 {
-    uint8_t m = rd_raw(image, source, SVM_AT_MASK_BYTES), width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
-    uint8_t n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS), e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
-    uint16_t total_states = rd16_raw(image, source, SVM_AT_NUM_STATES);
-    uint16_t total_trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
-    uint16_t expected_first = 0;
-    uint8_t s;
-    if (beyond_events(image, source, CONTROLLABLE_AT, m, e) || beyond_events(image, source, PUBLIC_AT(m), m, e)) {
+    const uint8_t *h = lay->header;
+    uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
+    uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
+    uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
+    uint16_t expected_first = 0, alphabet = (uint16_t)SUPS_AT(m), st = lay->states_at;
+    if (mask_beyond(image, source, CONTROLLABLE_AT, m, e) || mask_beyond(image, source, (uint16_t)PUBLIC_AT(m), m, e)) {
         return SVM_ERR_LAYOUT;
     }
-    for (s = 0; s < n; s++) {
-        uint16_t alphabet = (uint16_t)(SUPS_AT(m) + (uint16_t)s * (m + 6u));
-        uint16_t at = (uint16_t)(alphabet + m);
-        uint16_t first = rd16_raw(image, source, at);
-        uint16_t count = rd16_raw(image, source, (uint16_t)(at + 2u));
-        uint16_t init = rd16_raw(image, source, (uint16_t)(at + 4u));
-        uint16_t q;
-        if (first != expected_first || count == 0 || init >= count || count > total_states - first ||
-            beyond_events(image, source, alphabet, m, e)) {
+    for (s = 0; s < n; s++, alphabet = (uint16_t)(alphabet + SUP_SIZE(m))) {
+        uint16_t first, count, q;
+        rd_copy(record, image, source, (uint16_t)(alphabet + m), 6u);    /* first, count, initial */
+        first = le16(record);
+        count = le16(record + 2);
+        if (first != expected_first || count == 0 || le16(record + 4) >= count || count > total_states - first ||
+            mask_beyond(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
-        for (q = 0; q < count; q++) {
-            uint16_t st = (uint16_t)(lay->states_at + (uint16_t)(first + q) * (m + 2u));
-            uint16_t succ = rd16_raw(image, source, (uint16_t)(st + m));
-            uint16_t defined = 0, k;
-            uint8_t i;
-            if (beyond_events(image, source, st, m, e)) {
-                return SVM_ERR_LAYOUT;
-            }
+        for (q = 0; q < count; q++, st = (uint16_t)(st + STATE_SIZE(m))) {
+            uint16_t defined = 0, succ, k, t_at;
+            uint8_t i, byte = 0;
             for (i = 0; i < m; i++) {
-                defined = (uint16_t)(defined + popcount8(rd_raw(image, source, (uint16_t)(st + i))));
+                byte = rd_raw(image, source, (uint16_t)(st + i));
+                defined = (uint16_t)(defined + popcount8(byte));
             }
-            if (succ > total_trans || defined > total_trans - succ) {
+            succ = rd16_raw(image, source, (uint16_t)(st + m));
+            if (beyond_events(byte, e) || succ > total_trans || defined > total_trans - succ) {
                 return SVM_ERR_LAYOUT;
             }
-            for (k = 0; k < defined; k++) {
-                uint16_t t_at = (uint16_t)(lay->targets_at + (uint16_t)(succ + k) * width);
+            t_at = (uint16_t)(lay->targets_at + (succ << (width - 1u)));
+            for (k = 0; k < defined; k++, t_at = (uint16_t)(t_at + width)) {
                 uint16_t target = width == 1u ? rd_raw(image, source, t_at) : rd16_raw(image, source, t_at);
                 if (target >= count) {
                     return SVM_ERR_LAYOUT;
@@ -439,34 +515,46 @@ static uint8_t name_char(uint8_t c)
     return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
 }
 
-static int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
+/* Past every image: a section end beyond the checksum (lengths are at most 65535). */
+#define PAST_END 0xFFFFu
+
+/* `pos` + `count` * `size`, or PAST_END when that passes `end` (<= 65533): section offsets stay
+ * 16-bit and a corrupt header never makes them wrap around (PAST_END stays PAST_END). */
+static SVM_COLD uint16_t section_end(uint16_t pos, uint16_t count, uint8_t size, uint16_t end)
 {
-    uint8_t flags, e, n, width, m;
-    uint16_t states, trans, end, i;
-    uint32_t pos;
-    if (image == 0 || length < SVM_MIN_IMAGE_SIZE || rd16_raw(image, source, SVM_AT_LENGTH) != length) {
+    uint32_t to = (uint32_t)count * size + pos;
+    return to > end ? PAST_END : (uint16_t)to;
+}
+
+static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
+{
+    /* The header is copied into lay->header here, before anything reads it. */
+    uint8_t *h = lay->header, flags, e, m, i;  // cppcheck-suppress ctuuninitvar
+    uint16_t states, trans, end, pos;
+    if (image == 0 || length < SVM_MIN_IMAGE_SIZE) {
         return SVM_ERR_LENGTH;
     }
-    if (rd16_raw(image, source, SVM_AT_MAGIC) != (uint16_t)SVM_MAGIC ||
-        rd16_raw(image, source, SVM_AT_MAGIC + 2u) != (uint16_t)(SVM_MAGIC >> 16)) {
+    rd_copy(h, image, source, 0u, SVM_HEADER_SIZE);
+    if (le16(h + SVM_AT_LENGTH) != length) {
+        return SVM_ERR_LENGTH;
+    }
+    if (le16(h + SVM_AT_MAGIC) != (uint16_t)SVM_MAGIC || le16(h + SVM_AT_MAGIC + 2u) != (uint16_t)(SVM_MAGIC >> 16)) {
         return SVM_ERR_MAGIC;
     }
-    if (rd_raw(image, source, SVM_AT_VERSION) != SVM_FORMAT_VERSION) {
+    if (h[SVM_AT_VERSION] != SVM_FORMAT_VERSION) {
         return SVM_ERR_VERSION;
     }
     end = (uint16_t)(length - SVM_CRC_SIZE);
     if (crc16(image, source, end) != rd16_raw(image, source, end)) {
         return SVM_ERR_CRC;
     }
-    flags = rd_raw(image, source, SVM_AT_FLAGS);
-    e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
-    n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS);
-    states = rd16_raw(image, source, SVM_AT_NUM_STATES);
-    trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
-    width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
-    m = rd_raw(image, source, SVM_AT_MASK_BYTES);
-    if (e == 0 || n == 0 || (width != 1u && width != 2u) || m != (uint8_t)((e + 7u) / 8u) ||
-        (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
+    flags = h[SVM_AT_FLAGS];
+    e = h[SVM_AT_NUM_EVENTS];
+    states = le16(h + SVM_AT_NUM_STATES);
+    trans = le16(h + SVM_AT_NUM_TRANSITIONS);
+    m = h[SVM_AT_MASK_BYTES];
+    if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || (uint8_t)(h[SVM_AT_STATE_WIDTH] - 1u) > 1u ||
+        m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
@@ -474,49 +562,43 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
         return SVM_ERR_LIMITS;
     }
 #endif
-    /* Section offsets in 32 bits: a corrupt header must not wrap around. */
-    pos = SVM_HEADER_SIZE + 2u * (uint32_t)m + (uint32_t)n * (m + 6u);
-    lay->states_at = (uint16_t)pos;
-    pos += (uint32_t)states * (m + 2u);
-    lay->targets_at = (uint16_t)pos;
-    pos += (uint32_t)trans * width;
+    lay->states_at = pos = section_end((uint16_t)SUPS_AT(m), h[SVM_AT_NUM_SUPERVISORS], (uint8_t)SUP_SIZE(m), end);
+    lay->targets_at = pos = section_end(pos, states, (uint8_t)STATE_SIZE(m), end);
+    pos = section_end(pos, trans, h[SVM_AT_STATE_WIDTH], end);
     lay->probs_at = 0;
     if (flags & SVM_FLAG_PROBS) {
-        lay->probs_at = (uint16_t)pos;
-        pos += 2u * (uint32_t)trans;
+        lay->probs_at = pos;
+        pos = section_end(pos, trans, 2u, end);
     }
     lay->names_at = 0;
     if (pos > end) {
         return SVM_ERR_LAYOUT;
     }
     if (flags & SVM_FLAG_NAMES) {
-        lay->names_at = (uint16_t)pos;
+        lay->names_at = pos;
         for (i = 0; i < e; i++) {
-            uint32_t name_end;
-            if (pos >= end) {
-                return SVM_ERR_LAYOUT;
-            }
-            name_end = pos + 1u + rd_raw(image, source, (uint16_t)pos);
-            if (name_end > end) {
+            uint16_t name_end;
+            if (pos >= end || (name_end = section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end)) ==
+                                  PAST_END) {
                 return SVM_ERR_LAYOUT;
             }
             for (pos++; pos < name_end; pos++) {
-                if (!name_char(rd_raw(image, source, (uint16_t)pos))) {
+                if (!name_char(rd_raw(image, source, pos))) {
                     return SVM_ERR_LAYOUT;
                 }
             }
         }
     }
     if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
-        if (pos + e + 2u * (uint32_t)states > end) {
+        if (section_end(section_end(pos, e, 1u, end), states, 2u, end) == PAST_END) {
             return SVM_ERR_LAYOUT;
         }
         for (i = 0; i < e; i++, pos++) {
-            if (rd_raw(image, source, (uint16_t)pos) >= e) {
+            if (rd_raw(image, source, pos) >= e) {
                 return SVM_ERR_LAYOUT;
             }
         }
-        pos += 2u * (uint32_t)states;
+        pos = section_end(pos, states, 2u, end);
     }
     if (pos != end) {
         return SVM_ERR_LAYOUT;
@@ -528,7 +610,7 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
     }
 #endif
 #if SVM_MAX_SUPERVISORS < 255
-    if (n > SVM_MAX_SUPERVISORS) {
+    if (h[SVM_AT_NUM_SUPERVISORS] > SVM_MAX_SUPERVISORS) {
         return SVM_ERR_LIMITS;
     }
 #endif
@@ -559,7 +641,7 @@ static uint8_t readable(uint8_t source)
 #endif
 }
 
-int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
+SVM_COLD int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
     return readable(source) ? validate(image, source, length, &lay) : SVM_ERR_SOURCE;
@@ -567,7 +649,7 @@ int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
 
 /* ---- life cycle ---------------------------------------------------------------------------- */
 
-void svm_init(svm_vm_t *vm)
+SVM_COLD void svm_init(svm_vm_t *vm)
 {
     uint8_t *raw = (uint8_t *)vm;
     uint16_t i;
@@ -575,18 +657,24 @@ void svm_init(svm_vm_t *vm)
         raw[i] = 0;
     }
     vm->image = 0;
+#if SVM_WITH_BINDINGS
     vm->bindings = 0;
+#endif
     vm->dispatch = 0;
+#if SVM_WITH_LEARNED
     vm->chooser = 0;
     vm->chooser_ctx = 0;
+#endif
     vm->on_violation = 0;
+#if SVM_WITH_FIRST
     vm->priority = 0;
     vm->priority_by_name = 0;
+#endif
     vm->seed = SVM_DEFAULT_SEED;
     vm->rng = SVM_DEFAULT_SEED;
 }
 
-void svm_reset(svm_vm_t *vm)
+SVM_COLD void svm_reset(svm_vm_t *vm)
 {
     uint8_t s;
     for (s = 0; s < vm->num_supervisors; s++) {
@@ -600,8 +688,9 @@ void svm_reset(svm_vm_t *vm)
     vm->rng = vm->seed ? vm->seed : SEED_FOR_ZERO;
 }
 
+#if SVM_WITH_NAMES
 /* Offset of the event's name record (length byte, then the name) in an image. */
-static uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at, uint8_t event)
+static SVM_COLD uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at, uint8_t event)
 {
     uint16_t pos = names_at;
     uint8_t i;
@@ -611,9 +700,10 @@ static uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at,
     return pos;
 }
 
+#if REBIND_BY_NAME
 /* Index, in a new image (validated, not yet loaded), of the old image's event of the same
  * name; -1 if it has none. Either image may be in flash, RAM or EEPROM. */
-static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
+static SVM_COLD int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
                        const layout_t *lay, uint8_t old_event)
 {
     uint16_t old_pos = name_at(vm->image, vm->source, vm->names_at, old_event);
@@ -637,6 +727,7 @@ static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
     return -1;
 }
 
+#if SVM_WITH_BINDINGS
 static uint8_t is_bound(const svm_binding_t *b)
 {
     return b->action != 0 || b->check != 0 || b->data != 0;
@@ -646,7 +737,7 @@ static uint8_t is_bound(const svm_binding_t *b)
  * new image, in place. The map is injective (names are unique), so carrying a binding to its
  * new slot, picking up the binding that slot held and carrying that on, places every binding
  * once, whether its moves form a chain or a cycle. */
-static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
+static SVM_COLD int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
 {
     uint8_t map[SVM_MAX_EVENTS];
     uint8_t moved[SVM_MASK_BYTES];
@@ -688,10 +779,12 @@ static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, co
     }
     return SVM_OK;
 }
+#endif /* SVM_WITH_BINDINGS */
 
+#if SVM_WITH_FIRST
 /* Swap: the priority list of svm_bind_priority follows its events' names into the new image;
  * with `write` 0 only checks that every name is there, so that a refusal changes nothing. */
-static int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay,
+static SVM_COLD int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay,
                            uint8_t write)
 {
     uint8_t k;
@@ -709,34 +802,49 @@ static int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, c
     }
     return SVM_OK;
 }
+#endif /* SVM_WITH_FIRST */
+#endif /* REBIND_BY_NAME */
+#endif /* SVM_WITH_NAMES */
 
-static int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
+static SVM_COLD int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
+#if REBIND_BY_NAME
     uint8_t rebind = vm->image != 0 && vm->names_at != 0;
+#endif
     int result = validate(image, source, length, &lay);
     if (result != SVM_OK) {
         return result;
     }
+#if SVM_WITH_NAMES && SVM_WITH_FIRST
     if (rebind && vm->priority_by_name != 0 && (result = rebind_priority(vm, image, source, &lay, 0)) != SVM_OK) {
         return result;
     }
+#endif
+#if SVM_WITH_NAMES && SVM_WITH_BINDINGS
     if (rebind && vm->bindings != 0 && (result = rebind_by_name(vm, image, source, &lay)) != SVM_OK) {
         return result;
     }
+#endif
+#if SVM_WITH_NAMES && SVM_WITH_FIRST
     if (rebind && vm->priority_by_name != 0) {
         (void)rebind_priority(vm, image, source, &lay, 1);
     }
+#endif
     vm->image = image;
     vm->source = source;
     vm->states_at = lay.states_at;
     vm->targets_at = lay.targets_at;
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
     vm->probs_at = lay.probs_at;
+#endif
+#if SVM_WITH_NAMES
     vm->names_at = lay.names_at;
-    vm->num_events = RD(vm, SVM_AT_NUM_EVENTS);
-    vm->num_supervisors = RD(vm, SVM_AT_NUM_SUPERVISORS);
-    vm->width = RD(vm, SVM_AT_STATE_WIDTH);
-    vm->mask_bytes = RD(vm, SVM_AT_MASK_BYTES);
+#endif
+    vm->num_events = lay.header[SVM_AT_NUM_EVENTS];
+    vm->num_supervisors = lay.header[SVM_AT_NUM_SUPERVISORS];
+    vm->width = lay.header[SVM_AT_STATE_WIDTH];
+    vm->mask_bytes = lay.header[SVM_AT_MASK_BYTES];
     svm_reset(vm);
     return SVM_OK;
 }
@@ -768,7 +876,8 @@ void svm_set_options(svm_vm_t *vm, uint8_t options, uint32_t seed)
 
 /* ---- callbacks ----------------------------------------------------------------------------- */
 
-void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
+#if SVM_WITH_BINDINGS
+SVM_COLD void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
 {
     uint8_t e;
     for (e = 0; e < cap; e++) {
@@ -780,7 +889,7 @@ void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
     vm->bindings_cap = cap;
 }
 
-int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn check, void *data)
+SVM_COLD int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn check, void *data)
 {
     if (vm->bindings == 0) {
         return SVM_ERR_NO_BINDINGS;
@@ -798,18 +907,22 @@ int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn che
     vm->bindings[event].data = data;
     return SVM_OK;
 }
+#endif
 
 void svm_set_dispatch(svm_vm_t *vm, svm_dispatch_fn dispatch)
 {
     vm->dispatch = dispatch;
 }
 
+#if SVM_WITH_LEARNED
 void svm_set_chooser(svm_vm_t *vm, svm_chooser_fn chooser, void *ctx)
 {
     vm->chooser = chooser;
     vm->chooser_ctx = ctx;
 }
+#endif
 
+#if SVM_WITH_FIRST
 void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count)
 {
     vm->priority = events;
@@ -822,6 +935,7 @@ void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count)
     svm_set_priority(vm, events, count);
     vm->priority_by_name = events;
 }
+#endif
 
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
 {
@@ -830,9 +944,13 @@ void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
 
 static void run_action(svm_vm_t *vm, uint8_t event)
 {
+#if SVM_WITH_BINDINGS
     if (vm->bindings != 0 && event < vm->bindings_cap && vm->bindings[event].action != 0) {
         vm->bindings[event].action(vm->bindings[event].data);
-    } else if (vm->dispatch != 0) {
+        return;
+    }
+#endif
+    if (vm->dispatch != 0) {
         (void)vm->dispatch(vm, event, SVM_OP_ACTION);
     }
 }
@@ -951,6 +1069,7 @@ uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled)
     return mask_count(mask);
 }
 
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
 uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
@@ -971,8 +1090,9 @@ uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
     }
     return weight;
 }
+#endif
 
-uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
+SVM_COLD uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
 {
     uint8_t i, bit;
     for (i = 0; i < bytes; i++) {
@@ -1019,19 +1139,28 @@ static uint8_t uniform_index(uint32_t r, uint8_t count)
     return (uint8_t)(((uint16_t)((uint16_t)hi * count) + low_part) >> 8);
 }
 
+#if SVM_WITH_FIRST || SVM_WITH_LEARNED
 /* Whether event `e` (< E) is in the byte mask `bytes`. */
 static uint8_t has_event(const uint8_t *bytes, uint8_t e)
 {
     return (uint8_t)(((unsigned)bytes[e >> 3] >> (e & 7u)) & 1u);
 }
+#endif
 
-/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. */
+/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. A policy
+ * this build leaves out (SVM_WITH_*) runs as uniform. */
 static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
 {
-    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), bytes[SVM_MASK_BYTES], e;
+#if SVM_WITH_FIRST || SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
+    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), e;
+#endif
+#if SVM_WITH_FIRST || SVM_WITH_LEARNED
+    uint8_t bytes[SVM_MASK_BYTES];
     if (policy == SVM_POLICY_LEARNED || policy == SVM_POLICY_FIRST) {
         mask_store(bytes, enabled, vm->mask_bytes);
     }
+#endif
+#if SVM_WITH_LEARNED
     if (policy == SVM_POLICY_LEARNED) {
         if (vm->chooser == 0) {
             return 0xFFu;
@@ -1039,6 +1168,8 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         e = vm->chooser(vm, bytes, count, vm->chooser_ctx);
         return (e < vm->num_events && has_event(bytes, e)) ? e : 0xFFu;
     }
+#endif
+#if SVM_WITH_FIRST
     if (policy == SVM_POLICY_FIRST) {
         uint8_t k;
         for (k = 0; k < vm->priority_count; k++) {
@@ -1049,9 +1180,11 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         }
         return nth_event(enabled, 0);
     }
+#endif
     if (count == 1u) {
         return nth_event(enabled, 0);
     }
+#if SVM_WITH_WEIGHTED
     if (policy == SVM_POLICY_WEIGHTED) {
         uint32_t total = 0, pick;
         cursor_t c;
@@ -1071,6 +1204,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
             }
         }
     }
+#endif
     return nth_event(enabled, uniform_index(svm_random(vm), count));
 }
 
@@ -1079,9 +1213,12 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
  * are read once per step (callbacks must not rebind during a step). */
 static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 {
+#if SVM_WITH_BINDINGS
     const svm_binding_t *bindings = vm->bindings;
+    uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u;
+#endif
     svm_dispatch_fn dispatch = vm->dispatch;
-    uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u, pass, i, current[SVM_MASK_BYTES];
+    uint8_t pass, i, current[SVM_MASK_BYTES];
     cursor_t c;
     for (i = 0; i < SVM_MASK_BYTES; i++) {
         current[i] = 0;
@@ -1094,9 +1231,12 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
                 if (!(todo & 1u)) {
                     continue;
                 }
+#if SVM_WITH_BINDINGS
                 if (event < cap && bindings[event].check != 0) {
                     occurs = bindings[event].check(bindings[event].data) != 0;
-                } else {
+                } else
+#endif
+                {
                     occurs = dispatch != 0 && dispatch(vm, event, SVM_OP_CHECK) != 0;
                 }
                 if (occurs) {
@@ -1183,7 +1323,7 @@ uint8_t svm_mask_bytes(const svm_vm_t *vm)
     return vm->mask_bytes;
 }
 
-uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
+SVM_COLD uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
 {
     if (vm->image == 0 || supervisor >= vm->num_supervisors) {
         return 0;
@@ -1225,7 +1365,8 @@ uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event)
                      (RD(vm, PUBLIC_AT(vm->mask_bytes) + (event >> 3)) & (1u << (event & 7u))));
 }
 
-int svm_event_index(const svm_vm_t *vm, const char *name)
+#if SVM_WITH_NAMES
+SVM_COLD int svm_event_index(const svm_vm_t *vm, const char *name)
 {
     uint16_t pos = vm->names_at;
     uint8_t e, i;
@@ -1250,17 +1391,12 @@ int svm_event_index(const svm_vm_t *vm, const char *name)
     return -1;
 }
 
-uint8_t svm_image_byte(const svm_vm_t *vm, uint16_t at)
-{
-    return RD(vm, at);
-}
-
 uint8_t svm_has_names(const svm_vm_t *vm)
 {
     return (uint8_t)(vm->image != 0 && vm->names_at != 0);
 }
 
-uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap)
+SVM_COLD uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap)
 {
     uint16_t pos;
     uint8_t len, i;
@@ -1279,4 +1415,10 @@ uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap
         buf[i] = '\0';
     }
     return len;
+}
+#endif /* SVM_WITH_NAMES */
+
+uint8_t svm_image_byte(const svm_vm_t *vm, uint16_t at)
+{
+    return RD(vm, at);
 }
