@@ -366,7 +366,8 @@ static SVM_INLINE uint8_t cursor_next(cursor_t *c)
  * avr-libc's _crc_ccitt_update also uses: `d` = the byte xor the low byte of the sum, then
  * crc = (crc >> 8) ^ T[d], T[d] = (e << 8) ^ (e << 3) ^ (e >> 4) with e = d ^ (d << 4) (mod
  * 256). Where flash is not counted in bytes (SVM_CRC_TABLE, off on microcontrollers) T is a
- * 512-byte table; elsewhere it is computed: a few shifts and no branch. */
+ * 512-byte table, and a second one (T2) takes two bytes a step; elsewhere T is computed: a few
+ * shifts and no branch. */
 #ifndef SVM_CRC_TABLE
 #if defined(__AVR__) || (defined(__arm__) && !defined(__linux__))
 #define SVM_CRC_TABLE 0
@@ -410,21 +411,66 @@ static const uint16_t crc_table[256] = {    /* T[0 .. 255] */
     0xF78F, 0xE606, 0xD49D, 0xC514, 0xB1AB, 0xA022, 0x92B9, 0x8330,
     0x7BC7, 0x6A4E, 0x58D5, 0x495C, 0x3DE3, 0x2C6A, 0x1EF1, 0x0F78
 };
+/* T2[x]: the sum after byte x then a zero byte, (T[x] >> 8) ^ T[T[x] & 0xFF]: two bytes per lookup
+ * pair (the sum xor the next two bytes, little-endian, indexes T2 by its low byte and T by its
+ * high byte). */
+static const uint16_t crc_table2[256] = {
+    0x0000, 0x19D8, 0x33B0, 0x2A68, 0x6760, 0x7EB8, 0x54D0, 0x4D08,
+    0xCEC0, 0xD718, 0xFD70, 0xE4A8, 0xA9A0, 0xB078, 0x9A10, 0x83C8,
+    0x9591, 0x8C49, 0xA621, 0xBFF9, 0xF2F1, 0xEB29, 0xC141, 0xD899,
+    0x5B51, 0x4289, 0x68E1, 0x7139, 0x3C31, 0x25E9, 0x0F81, 0x1659,
+    0x2333, 0x3AEB, 0x1083, 0x095B, 0x4453, 0x5D8B, 0x77E3, 0x6E3B,
+    0xEDF3, 0xF42B, 0xDE43, 0xC79B, 0x8A93, 0x934B, 0xB923, 0xA0FB,
+    0xB6A2, 0xAF7A, 0x8512, 0x9CCA, 0xD1C2, 0xC81A, 0xE272, 0xFBAA,
+    0x7862, 0x61BA, 0x4BD2, 0x520A, 0x1F02, 0x06DA, 0x2CB2, 0x356A,
+    0x4666, 0x5FBE, 0x75D6, 0x6C0E, 0x2106, 0x38DE, 0x12B6, 0x0B6E,
+    0x88A6, 0x917E, 0xBB16, 0xA2CE, 0xEFC6, 0xF61E, 0xDC76, 0xC5AE,
+    0xD3F7, 0xCA2F, 0xE047, 0xF99F, 0xB497, 0xAD4F, 0x8727, 0x9EFF,
+    0x1D37, 0x04EF, 0x2E87, 0x375F, 0x7A57, 0x638F, 0x49E7, 0x503F,
+    0x6555, 0x7C8D, 0x56E5, 0x4F3D, 0x0235, 0x1BED, 0x3185, 0x285D,
+    0xAB95, 0xB24D, 0x9825, 0x81FD, 0xCCF5, 0xD52D, 0xFF45, 0xE69D,
+    0xF0C4, 0xE91C, 0xC374, 0xDAAC, 0x97A4, 0x8E7C, 0xA414, 0xBDCC,
+    0x3E04, 0x27DC, 0x0DB4, 0x146C, 0x5964, 0x40BC, 0x6AD4, 0x730C,
+    0x8CCC, 0x9514, 0xBF7C, 0xA6A4, 0xEBAC, 0xF274, 0xD81C, 0xC1C4,
+    0x420C, 0x5BD4, 0x71BC, 0x6864, 0x256C, 0x3CB4, 0x16DC, 0x0F04,
+    0x195D, 0x0085, 0x2AED, 0x3335, 0x7E3D, 0x67E5, 0x4D8D, 0x5455,
+    0xD79D, 0xCE45, 0xE42D, 0xFDF5, 0xB0FD, 0xA925, 0x834D, 0x9A95,
+    0xAFFF, 0xB627, 0x9C4F, 0x8597, 0xC89F, 0xD147, 0xFB2F, 0xE2F7,
+    0x613F, 0x78E7, 0x528F, 0x4B57, 0x065F, 0x1F87, 0x35EF, 0x2C37,
+    0x3A6E, 0x23B6, 0x09DE, 0x1006, 0x5D0E, 0x44D6, 0x6EBE, 0x7766,
+    0xF4AE, 0xED76, 0xC71E, 0xDEC6, 0x93CE, 0x8A16, 0xA07E, 0xB9A6,
+    0xCAAA, 0xD372, 0xF91A, 0xE0C2, 0xADCA, 0xB412, 0x9E7A, 0x87A2,
+    0x046A, 0x1DB2, 0x37DA, 0x2E02, 0x630A, 0x7AD2, 0x50BA, 0x4962,
+    0x5F3B, 0x46E3, 0x6C8B, 0x7553, 0x385B, 0x2183, 0x0BEB, 0x1233,
+    0x91FB, 0x8823, 0xA24B, 0xBB93, 0xF69B, 0xEF43, 0xC52B, 0xDCF3,
+    0xE999, 0xF041, 0xDA29, 0xC3F1, 0x8EF9, 0x9721, 0xBD49, 0xA491,
+    0x2759, 0x3E81, 0x14E9, 0x0D31, 0x4039, 0x59E1, 0x7389, 0x6A51,
+    0x7C08, 0x65D0, 0x4FB8, 0x5660, 0x1B68, 0x02B0, 0x28D8, 0x3100,
+    0xB2C8, 0xAB10, 0x8178, 0x98A0, 0xD5A8, 0xCC70, 0xE618, 0xFFC0
+};
 #endif
 
 static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
-    uint16_t crc = 0xFFFFu, i;
-    for (i = 0; i < length; i++) {
-        uint8_t d = (uint8_t)(rd_raw(image, source, i) ^ (uint8_t)crc);
+    /* Native ints (16 bits on AVR) and a pointer walk: no truncation or index sum per byte. */
+    unsigned crc = 0xFFFFu;
+    const uint8_t *p = image, *end = image + length;
 #if SVM_CRC_TABLE
-        crc = (uint16_t)((crc >> 8) ^ crc_table[d]);
+    for (; end - p >= 2; p += 2) {
+        crc ^= (unsigned)PEEK(source, p) | (unsigned)PEEK(source, p + 1) << 8;
+        crc = crc_table2[crc & 0xFFu] ^ crc_table[crc >> 8];
+    }
+#endif
+    for (; p != end; p++) {
+        unsigned d = ((unsigned)PEEK(source, p) ^ crc) & 0xFFu;
+#if SVM_CRC_TABLE
+        crc = (crc >> 8) ^ crc_table[d];
 #else
-        uint8_t e = (uint8_t)(d ^ (uint8_t)(d << 4));
-        crc = (uint16_t)((crc >> 8) ^ ((uint16_t)e << 8) ^ (uint16_t)((uint16_t)e << 3) ^ (uint8_t)(e >> 4));
+        unsigned e = (d ^ (d << 4)) & 0xFFu;
+        crc = (crc >> 8) ^ ((e << 8) & 0xFFFFu) ^ ((e << 3) & 0xFFFFu) ^ (e >> 4);
 #endif
     }
-    return crc;
+    return (uint16_t)crc;
 }
 
 /* What svm_load needs to know once an image has been accepted: section offsets and header. */
@@ -472,7 +518,8 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
     uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
     uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
     uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
-    uint16_t expected_first = 0, alphabet = (uint16_t)SUPS_AT(m), st = lay->states_at;
+    uint16_t expected_first = 0, alphabet = (uint16_t)SUPS_AT(m);
+    const uint8_t *st = image + lay->states_at, *targets = image + lay->targets_at;
     if (mask_beyond(image, source, CONTROLLABLE_AT, m, e) || mask_beyond(image, source, (uint16_t)PUBLIC_AT(m), m, e)) {
         return SVM_ERR_LAYOUT;
     }
@@ -485,21 +532,25 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
             mask_beyond(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
-        for (q = 0; q < count; q++, st = (uint16_t)(st + STATE_SIZE(m))) {
-            uint16_t defined = 0, succ, k, t_at;
+        for (q = 0; q < count; q++, st += STATE_SIZE(m)) {
+            uint16_t defined = 0, succ, k;
+            const uint8_t *target;
             uint8_t i, byte = 0;
             for (i = 0; i < m; i++) {
-                byte = rd_raw(image, source, (uint16_t)(st + i));
+                byte = PEEK(source, st + i);
                 defined = (uint16_t)(defined + popcount8(byte));
             }
-            succ = rd16_raw(image, source, (uint16_t)(st + m));
+            succ = (uint16_t)(PEEK(source, st + m) | (unsigned)PEEK(source, st + m + 1) << 8);
             if (beyond_events(byte, e) || succ > total_trans || defined > total_trans - succ) {
                 return SVM_ERR_LAYOUT;
             }
-            t_at = (uint16_t)(lay->targets_at + (succ << (width - 1u)));
-            for (k = 0; k < defined; k++, t_at = (uint16_t)(t_at + width)) {
-                uint16_t target = width == 1u ? rd_raw(image, source, t_at) : rd16_raw(image, source, t_at);
-                if (target >= count) {
+            target = targets + (succ << (width - 1u));
+            for (k = 0; k < defined; k++, target += width) {
+                unsigned local = PEEK(source, target);
+                if (width != 1u) {
+                    local |= (unsigned)PEEK(source, target + 1) << 8;
+                }
+                if (local >= count) {
                     return SVM_ERR_LAYOUT;
                 }
             }

@@ -22,7 +22,8 @@
  *                         or SVM_ANY_SOURCE (also EEPROM, svm_load_E)
  *   SVM_POPCOUNT_TABLE    1: count the bits of a mask byte with a 256-byte table in flash
  *                         (default on AVR, where it saves about 4 % of a step, but at -Os,
- *                         which asks for flash first), 0: arithmetic
+ *                         which asks for flash first, and on hosts; not on bare-metal ARM),
+ *                         0: arithmetic
  *
  * Features (each 1 by default; a build that does not use one sets it to 0 and its code is not
  * compiled: the generated Kilobot Makefile keeps only what its program calls):
@@ -62,7 +63,7 @@
 #define SVM_IMAGE_SOURCES SVM_FLASH_OR_RAM
 #endif
 #ifndef SVM_POPCOUNT_TABLE
-#if defined(__AVR__) && !defined(__OPTIMIZE_SIZE__)
+#if defined(__AVR__) ? !defined(__OPTIMIZE_SIZE__) : !(defined(__arm__) && !defined(__linux__))
 #define SVM_POPCOUNT_TABLE 1
 #else
 #define SVM_POPCOUNT_TABLE 0
