@@ -727,10 +727,10 @@ SVM_COLD void svm_init(svm_vm_t *vm)
 
 SVM_COLD void svm_reset(svm_vm_t *vm)
 {
-    uint8_t s;
-    for (s = 0; s < vm->num_supervisors; s++) {
-        uint16_t sup = (uint16_t)SUP_AT(vm, s);
-        vm->state[s] = (svm_state_t)(RD16(vm, sup + vm->mask_bytes) + RD16(vm, sup + vm->mask_bytes + 4u));
+    uint8_t s, m = vm->mask_bytes;
+    const uint8_t *record = vm->image + SUPS_AT(m) + m;    /* first state, count, initial */
+    for (s = 0; s < vm->num_supervisors; s++, record += SUP_SIZE(m)) {
+        vm->state[s] = (svm_state_t)(peek16(vm->source, record) + peek16(vm->source, record + 4));
     }
     for (s = 0; s < SVM_MASK_BYTES; s++) {
         vm->previous[s] = 0;
