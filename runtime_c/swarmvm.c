@@ -367,13 +367,21 @@ static SVM_INLINE uint8_t cursor_next(cursor_t *c)
  * crc = (crc >> 8) ^ T[d], T[d] = (e << 8) ^ (e << 3) ^ (e >> 4) with e = d ^ (d << 4) (mod
  * 256). Where flash is not counted in bytes (SVM_CRC_TABLE, off on microcontrollers) T is a
  * 512-byte table, and a second one (T2) takes two bytes a step; elsewhere T is computed: a few
- * shifts and no branch. */
+ * shifts and no branch, on AVR by avr-libc's _crc_ccitt_update (the same step in a few
+ * instructions of assembly, smaller than the compiled shifts). */
 #ifndef SVM_CRC_TABLE
 #if defined(__AVR__) || (defined(__arm__) && !defined(__linux__))
 #define SVM_CRC_TABLE 0
 #else
 #define SVM_CRC_TABLE 1
 #endif
+#endif
+
+#if SVM_CRC_TABLE && defined(__AVR__)
+#error "SVM_CRC_TABLE is for hosts: on AVR its tables would be copied into RAM"
+#endif
+#if defined(__AVR__)
+#include <util/crc16.h>
 #endif
 
 #if SVM_CRC_TABLE
@@ -462,11 +470,13 @@ static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t le
     }
 #endif
     for (; p != end; p++) {
-        unsigned d = ((unsigned)PEEK(source, p) ^ crc) & 0xFFu;
-#if SVM_CRC_TABLE
-        crc = (crc >> 8) ^ crc_table[d];
+#if defined(__AVR__)
+        crc = _crc_ccitt_update((uint16_t)crc, PEEK(source, p));
+#elif SVM_CRC_TABLE
+        crc = (crc >> 8) ^ crc_table[(PEEK(source, p) ^ crc) & 0xFFu];
 #else
-        unsigned e = (d ^ (d << 4)) & 0xFFu;
+        unsigned e = (PEEK(source, p) ^ crc) & 0xFFu;
+        e = (e ^ (e << 4)) & 0xFFu;
         crc = (crc >> 8) ^ ((e << 8) & 0xFFFFu) ^ ((e << 3) & 0xFFFFu) ^ (e >> 4);
 #endif
     }
