@@ -18,7 +18,7 @@ from .pipeline import Compiled, compile_inputs, compile_spec, load
 from .properties import format_report
 from .render import write_outputs
 from .runtime import python_vm
-from .script import parse_script
+from .script import read_script_rows
 from .synth import models_by_name, synthesise
 from .synth_script import read_synth_script
 from .targets import TARGETS, generate
@@ -163,19 +163,17 @@ def _image_of(inputs: Sequence[str]) -> "Image":
 
 def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: str = "level",
           control: str = "after-inputs", policy: str = "uniform") -> Iterator[str]:
-    """The canonical trace lines of the reference VM replaying an event script.
+    """The canonical trace lines of the reference VM replaying an event script, produced as
+    they are read (a script of millions of steps in constant memory); bad input raises
+    InputError here, before the first line.
 
     ``inputs`` is a supervisor or one ``.svm`` image (which must carry event names)."""
     image = _image_of(inputs)
     if image.names is None:
         raise InputError(inputs[0], "image", "carries no event names; scripts name events")
-    try:
-        text = read_input(script_path).decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(script_path, "", "not UTF-8 text (byte %d)" % exc.start)
-    rows = parse_script(script_path, text, image.names, image.controllable)
+    rows = read_script_rows(script_path, image.names, image.controllable)
     machine = _vm.VM(image, inputs=input_mode, control=control, policy=policy, seed=seed)
-    return _vm.replay(machine, rows)
+    return _vm.replay_lines(machine, rows)
 
 
 def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
@@ -187,6 +185,8 @@ def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
             rows.append(fp.measure(path))
         except ELFError as exc:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
+        except OSError as exc:
+            raise fp.FootprintError("%s: cannot read file (%s)" % (path, exc.strerror))
     return rows
 
 

@@ -9,6 +9,8 @@ from collections import deque
 
 from .model import CanonicalSupervisor, Model
 
+SHOWN_STATES = 20    # unreachable states named in the warning; a range of thousands would be a line of 400 kB
+
 
 def canonicalise(spec):
     """:class:`~swarmvm.model.Supervisors` -> :class:`~swarmvm.model.Model`."""
@@ -29,8 +31,9 @@ def canonicalise(spec):
         dropped = len(rows) - len(order)
         if dropped:
             missing = sorted(set(range(len(rows))) - set(number))
+            shown = ", ".join(map(str, missing[:SHOWN_STATES])) + (", ..." if dropped > SHOWN_STATES else "")
             warnings.append("%s: supervisor %d: %d unreachable state(s) dropped (states %s)"
-                            % (spec.source, s, dropped, ", ".join(map(str, missing))))
+                            % (spec.source, s, dropped, shown))
         states = tuple(tuple((e, number[target], p) for e, target, p in rows[old]) for old in order)
         supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states, tuple(order)))
     return Model(

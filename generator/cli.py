@@ -117,7 +117,7 @@ def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> No
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("--script", "script_path", required=True, type=click.Path(dir_okay=False),
+@click.option("--script", "script_path", required=True, type=click.Path(),
               help="Event script (docs/conformance.md).")
 @click.option("--seed", default=1, show_default=True, type=click.IntRange(0, 0xFFFFFFFF))
 @click.option("--inputs", "input_mode", type=click.Choice(vm.INPUT_MODES), default="level", show_default=True)
@@ -133,8 +133,8 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 
 
 @main.command()
-@click.argument("elfs", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
-@click.option("--json", "json_path", type=click.Path(dir_okay=False), help="Also write the report as JSON.")
+@click.argument("elfs", nargs=-1, required=True, type=click.Path())
+@click.option("--json", "json_path", type=click.Path(), help="Also write the report as JSON.")
 @click.option("--kilobot-flash", default=28672, show_default=True, type=click.IntRange(0),
               help="Flash a Kilobot image may use (bytes below the bootloader).")
 @click.option("--kilobot-stack", default=1024, show_default=True, type=click.IntRange(0),
@@ -166,7 +166,7 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, 
 
 @main.command()
 @click.argument("models", nargs=-1, required=True)
-@click.option("--script", "script_path", type=click.Path(dir_okay=False),
+@click.option("--script", "script_path", type=click.Path(),
               help="Synthesis script (docs/models.md), e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
 @click.option("-e", "--statement", "statements", multiple=True, metavar="STATEMENT",
               help="A script statement, e.g. 'S = SupC(G, K)' (repeatable; instead of --script).")

@@ -74,7 +74,11 @@ def write_outputs(outdir, files):
     All or nothing: every file is first written to a temporary file beside its destination,
     and only when all of them are written are they renamed into place, so a failure (an
     unwritable folder, a destination that is a folder, a full disk) leaves no partial output
-    and no temporary file. A folder or file that cannot be made is an InputError naming it."""
+    and no temporary file. A folder or file that cannot be made is an InputError naming it.
+
+    Nothing is written through or over a symbolic link: ``outdir``, the folders below it and
+    every file to be written must not be one (a link planted there, or left by a user, would
+    send the output elsewhere or be silently replaced); such a path is an InputError naming it."""
     outdir = Path(outdir)
     staged = []
     try:
@@ -83,6 +87,7 @@ def write_outputs(outdir, files):
             path = outdir / rel
             if keep and path.exists():
                 continue
+            _refuse_links(outdir, Path(rel))
             if path.is_dir():
                 raise InputError(str(path), "-o", "is a folder, not a file that can be written")
             staged.append((_stage(path, data), path))
@@ -95,6 +100,15 @@ def write_outputs(outdir, files):
             if os.path.exists(temp):
                 os.unlink(temp)
     return [str(path) for _, path in staged]
+
+
+def _refuse_links(outdir, rel):
+    """InputError naming the first of ``outdir``, the folders of ``rel`` below it and ``rel``
+    itself that is a symbolic link (checked without following it)."""
+    for depth in range(len(rel.parts) + 1):
+        path = outdir.joinpath(*rel.parts[:depth])
+        if path.is_symlink():
+            raise InputError(str(path), "-o", "is a symbolic link: swarmvm does not write through or over one")
 
 
 def _stage(path, data):

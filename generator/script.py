@@ -4,16 +4,21 @@ A script says, for each step, which uncontrollable events' checks return true. A
 line per step listing ``EV_`` names separated by spaces, or ``-`` for none; ``#`` starts a
 comment line."""
 
+import os
 import random
+import stat
 
-from .errors import InputError
+from .errors import InputError, read_input
+
+MAX_STEPS = 10 ** 7             # steps in a script: what ``swarmvm script --steps`` writes at most
+MAX_LINE_BYTES = 1 << 17        # a line naming each of 255 events of 255 characters fits
 
 
-def parse_script(path, text, names, controllable):
-    """Text -> list of sets of event indices. ``names`` are the image's bare event names."""
+def parse_lines(path, lines, names, controllable):
+    """Lines of a script (str) -> its rows (sets of event indices), one at a time; InputError
+    at the first bad line. ``names`` are the image's bare event names."""
     index = {"EV_" + n: i for i, n in enumerate(names)}
-    rows = []
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(lines, 1):
         line = line.strip()
         if not line or line.startswith("#"):
             continue
@@ -26,8 +31,56 @@ def parse_script(path, text, names, controllable):
                     raise InputError(path, "line %d" % number, "controllable events are chosen by the VM, "
                                      "not scripted", "event %s" % token)
                 row.add(index[token])
-        rows.append(row)
-    return rows
+        yield row
+
+
+def parse_script(path, text, names, controllable):
+    """Text -> list of sets of event indices. ``names`` are the image's bare event names."""
+    return list(parse_lines(path, text.splitlines(), names, controllable))
+
+
+def _file_lines(path):
+    """The lines of a regular file, decoded one at a time (InputError for a line that is not
+    UTF-8 or longer than MAX_LINE_BYTES)."""
+    try:
+        with open(path, "rb") as handle:
+            number = 0
+            while True:
+                raw = handle.readline(MAX_LINE_BYTES + 1)
+                if not raw:
+                    return
+                number += 1
+                if len(raw) > MAX_LINE_BYTES:
+                    raise InputError(path, "line %d" % number, "line over the %d-byte limit" % MAX_LINE_BYTES)
+                try:
+                    yield raw.decode("utf-8")
+                except UnicodeDecodeError as exc:
+                    raise InputError(path, "line %d" % number, "not UTF-8 text (byte %d of the line)" % exc.start)
+    except OSError as exc:
+        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
+
+
+def read_script_rows(path, names, controllable):
+    """A script file's rows, to iterate once, in constant memory: a regular file is read twice,
+    line by line, first to refuse bad input (InputError, before any row) and MAX_STEPS or more
+    steps, then for the rows; anything else (a pipe, a device) is read whole, within
+    errors.MAX_BYTES, as every other input is."""
+    try:
+        regular = stat.S_ISREG(os.stat(path).st_mode)
+    except OSError as exc:
+        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
+    if not regular:
+        try:
+            text = read_input(path).decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
+        return iter(parse_script(path, text, names, controllable))
+    steps = 0
+    for _ in parse_lines(path, _file_lines(path), names, controllable):
+        steps += 1
+        if steps > MAX_STEPS:
+            raise InputError(path, "", "script of over %d steps" % MAX_STEPS)
+    return parse_lines(path, _file_lines(path), names, controllable)
 
 
 def script_lines(rows, names):

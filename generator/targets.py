@@ -28,6 +28,10 @@ class Target:
 PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"))
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
     "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
+# The learned selection policy kept in a power-cut-safe store (docs/learning.md), built on request.
+C_LEARN_COPIES = tuple((RUNTIME_C / n, n) for n in (
+    "swarmvm_learn.h", "swarmvm_learn.c", "swarmvm_learn_store.h", "swarmvm_learn_store.c",
+    "swarmvm_store.h", "swarmvm_store.c"))
 CAPBOT_RUNTIME_COPIES = C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_logic_page.h", "swarmvm_logic_page.c"))
 
 TARGETS = {
@@ -75,17 +79,19 @@ TARGETS = {
                    ("kilobot/controller.c.j2", "{name}_controller.c", True)),
         copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in (
             "swarmvm_stream.h", "swarmvm_stream.c", "swarmvm_kilobot.h", "swarmvm_kilobot.c",
-            "swarmvm_kilobot_eeprom.h")),
+            "swarmvm_kilobot_eeprom.h")) + C_LEARN_COPIES,
         prepare=kilobot.prepare),
     "capbot": Target(
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
         templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
                    ("capbot/prj.conf.j2", "prj.conf", False),
+                   ("capbot/learned.conf.j2", "learned.conf", False),
                    ("capbot/main.c.j2", "src/main.c", False),
                    ("c/tables.h.j2", "src/{name}_tables.h", False),
                    ("c/tables.c.j2", "src/{name}_tables.c", False),
                    ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES)),
+        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES + C_LEARN_COPIES + tuple(
+            (RUNTIME_C / n, n) for n in ("swarmvm_store_zephyr.h", "swarmvm_store_zephyr.c")))),
 }
 
 

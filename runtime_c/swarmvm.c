@@ -458,10 +458,30 @@ static const uint16_t crc_table2[256] = {
 };
 #endif
 
+/* One byte of the sum: the image check's tail and svm_crc16_update (the learned-parameter
+ * store's records) share it. */
+static SVM_INLINE unsigned crc_byte(unsigned crc, uint8_t byte)
+{
+#if defined(__AVR__)
+    return _crc_ccitt_update((uint16_t)crc, byte);
+#elif SVM_CRC_TABLE
+    return (crc >> 8) ^ crc_table[(byte ^ crc) & 0xFFu];
+#else
+    unsigned e = (byte ^ crc) & 0xFFu;
+    e = (e ^ (e << 4)) & 0xFFu;
+    return (crc >> 8) ^ ((e << 8) & 0xFFFFu) ^ ((e << 3) & 0xFFFFu) ^ (e >> 4);
+#endif
+}
+
+uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
+{
+    return (uint16_t)crc_byte(crc, byte);
+}
+
 static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
     /* Native ints (16 bits on AVR) and a pointer walk: no truncation or index sum per byte. */
-    unsigned crc = 0xFFFFu;
+    unsigned crc = SVM_CRC16_INIT;
     const uint8_t *p = image, *end = image + length;
 #if SVM_CRC_TABLE
     for (; end - p >= 2; p += 2) {
@@ -470,15 +490,7 @@ static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t le
     }
 #endif
     for (; p != end; p++) {
-#if defined(__AVR__)
-        crc = _crc_ccitt_update((uint16_t)crc, PEEK(source, p));
-#elif SVM_CRC_TABLE
-        crc = (crc >> 8) ^ crc_table[(PEEK(source, p) ^ crc) & 0xFFu];
-#else
-        unsigned e = (PEEK(source, p) ^ crc) & 0xFFu;
-        e = (e ^ (e << 4)) & 0xFFu;
-        crc = (crc >> 8) ^ ((e << 8) & 0xFFFFu) ^ ((e << 3) & 0xFFFFu) ^ (e >> 4);
-#endif
+        crc = crc_byte(crc, PEEK(source, p));
     }
     return (uint16_t)crc;
 }
@@ -800,9 +812,9 @@ static uint8_t is_bound(const svm_binding_t *b)
  * once, whether its moves form a chain or a cycle. */
 static SVM_COLD int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
 {
-    uint8_t map[SVM_MAX_EVENTS];
-    uint8_t moved[SVM_MASK_BYTES];
-    uint8_t e, cap = vm->bindings_cap;
+    uint8_t map[SVM_MAX_EVENTS] = {0};     /* zeroed only for gcc's flow analysis: entries past */
+    uint8_t moved[SVM_MASK_BYTES];          /* `limit` are never read (-Wmaybe-uninitialized at */
+    uint8_t e, cap = vm->bindings_cap;      /* SVM_MAX_EVENTS=1 on arm-none-eabi-gcc)            */
     uint8_t limit = vm->num_events < cap ? vm->num_events : cap;
     for (e = 0; e < SVM_MASK_BYTES; e++) {
         moved[e] = 0;

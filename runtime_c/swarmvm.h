@@ -267,6 +267,11 @@ int svm_load_E(svm_vm_t *vm, const uint8_t *image, uint16_t length);
  * SVM_SOURCE_RAM, _FLASH or _EEPROM. */
 int svm_validate(const uint8_t *image, uint16_t length, uint8_t source);
 
+/* The image's checksum, CRC-16/MCRF4XX, one byte at a time: start from SVM_CRC16_INIT. Also
+ * the checksum of the learned-parameter store (swarmvm_store.h). */
+#define SVM_CRC16_INIT 0xFFFFu
+uint16_t svm_crc16_update(uint16_t crc, uint8_t byte);
+
 /* Initial states, cleared check memory and violation counter, generator re-seeded. */
 void svm_reset(svm_vm_t *vm);
 

@@ -26,6 +26,17 @@
 
 #define MASK_BYTES ((SVM_MAX_EVENTS + 7u) / 8u)
 
+#if SVM_LEARNED
+#if SVM_KILOBOT_EEPROM_FREE + 2UL * SVM_KILOBOT_SLOT_BYTES > 1024UL
+#error "SVM_LEARNED: the learned parameters' two slots do not fit the EEPROM above kilolib's area"
+#endif
+static svl_policy_t policy;
+static int32_t theta[SVM_KILOBOT_THETA];
+static uint32_t words[SVL_KEEPER_WORDS(SVM_KILOBOT_THETA)];     /* save/load buffer */
+static svm_store_t store;
+static svl_keeper_t keeper;
+#endif
+
 static svm_vm_t vm;
 static uint32_t last_step;
 
@@ -260,6 +271,28 @@ static uint32_t now(void)
     return ticks;
 }
 
+#if SVM_LEARNED
+/* The learned policy chooses; its parameters come from the EEPROM store when it holds them. */
+static void learn_start(void)
+{
+    svm_store_avr_eeprom(&store, SVM_KILOBOT_EEPROM_FREE, (uint16_t)SVM_KILOBOT_SLOT_BYTES);
+    if (svl_keeper_begin(&keeper, &policy, &vm, kilo_uid, theta, SVM_KILOBOT_THETA, words, &store,
+                         SVM_KILOBOT_KEEP_EVERY) < 0) {
+        set_color(RGB(3, 0, 0));    /* red: the model needs more than SVM_KILOBOT_THETA */
+    }
+}
+
+void svm_kilobot_reward(int32_t reward_q16)
+{
+    (void)svl_keeper_reward(&keeper, reward_q16);
+}
+
+const svl_keeper_t *svm_kilobot_keeper(void)
+{
+    return &keeper;
+}
+#endif
+
 __attribute__((weak)) void svm_kilobot_after_step(void)
 {
 }
@@ -278,6 +311,9 @@ static void setup(void)
     if (svm_kilobot_app_load(&vm) != SVM_OK) {
         set_color(RGB(3, 0, 0));    /* red: the image was refused */
     }
+#if SVM_LEARNED
+    learn_start();
+#endif
     last_step = now();
 }
 

@@ -23,7 +23,20 @@
  * instructions so that the IR receiver's bit timing keeps its margin. The message kilolib sends
  * is built inside its own transmit callback, so it never changes while kilolib sends it.
  *
- * EEPROM: nothing here writes EEPROM (swarmvm_kilobot_eeprom.h gives the first free address).
+ * EEPROM: only a build with SVM_LEARNED writes EEPROM: its learned parameters, from
+ * SVM_KILOBOT_EEPROM_FREE up (swarmvm_kilobot_eeprom.h), clear of kilolib's calibration.
+ *
+ * Learning (SVM_LEARNED, `make LEARNED=1`): the learned selection policy (docs/learning.md)
+ * chooses among the enabled controllable events, seeded with kilo_uid; the controller credits
+ * each choice with svm_kilobot_reward(). The parameters are kept across resets and power cuts
+ * in the EEPROM's two-slot store (swarmvm_learn_store.h): setup() loads the newest valid
+ * record (initial parameters, all preferences 0, when there is none), and a reward saves them
+ * every SVM_KILOBOT_KEEP_EVERY rewards when they moved by SVL_KEEPER_EPSILON (1.0) or more
+ * since the last save (swarmvm_learn_store.h; the policy's settings are its SVL_KEEPER_*). Default 1024: at one reward per step (30.5 a second) at most a save
+ * every 34 s; each byte of the two slots is then written at most every 67 s, and the EEPROM's
+ * 100,000 writes per byte last over 77 days of continuous learning. A save blocks loop() for
+ * about 3.3 ms per byte written (the kilolib interrupts keep running). Not with SVM_STREAM
+ * (a streamed image would change the parameters' shape).
  */
 #ifndef SWARMVM_KILOBOT_H
 #define SWARMVM_KILOBOT_H
@@ -62,6 +75,33 @@
 #endif
 #ifndef SVM_KILOBOT_NAME_BYTES
 #define SVM_KILOBOT_NAME_BYTES 34u
+#endif
+
+#ifndef SVM_LEARNED
+#define SVM_LEARNED 0
+#endif
+#if SVM_LEARNED
+#include "swarmvm_learn_store.h"
+/* Room for the preferences: states x controllable events of the model (at most). */
+#ifndef SVM_KILOBOT_THETA
+#define SVM_KILOBOT_THETA (SVM_MAX_STATES * SVM_MAX_EVENTS)
+#endif
+#ifndef SVM_KILOBOT_KEEP_EVERY
+#define SVM_KILOBOT_KEEP_EVERY 1024u
+#endif
+/* Each of the two EEPROM slots (from SVM_KILOBOT_EEPROM_FREE; the ATmega328P has 1 KB). */
+#define SVM_KILOBOT_SLOT_BYTES SVM_STORE_SLOT_BYTES(SVL_KEEPER_RECORD_BYTES(SVM_KILOBOT_THETA), 1u)
+#if SVM_STREAM
+#error "SVM_LEARNED with SVM_STREAM: a streamed image would change the learned parameters' shape"
+#endif
+
+/* Credit the last choice of the learned policy with a Q16 reward (SVL_Q16(x)); saves the
+ * parameters to EEPROM on the cadence above. Call it from loop() context (an action, a check,
+ * svm_kilobot_after_step), never from an interrupt. */
+void svm_kilobot_reward(int32_t reward_q16);
+
+/* The learned policy and its keeper (saves done since the start), to inspect. */
+const svl_keeper_t *svm_kilobot_keeper(void);
 #endif
 
 /* One public event and the message that carries it (in program memory). */

@@ -282,6 +282,7 @@ int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_
     p->baseline_shift = baseline_shift;
     p->baseline = 0;
     p->updates = 0;
+    p->moved = 0;
     p->pending = 0;
     return 0;
 }
@@ -350,7 +351,11 @@ uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
         int32_t delta = floor_shift(step9 * diff, 8);
         for (s = 0; s < p->num_supervisors; s++) {
             int32_t *cell = &p->theta[p->rows[s] + p->ranks[i]];
+            int32_t before = *cell;
+            uint32_t change;
             *cell = clamp(*cell + delta, THETA_LIMIT);
+            change = (uint32_t)(*cell >= before ? *cell - before : before - *cell);
+            p->moved = p->moved > UINT32_MAX - change ? UINT32_MAX : p->moved + change;
         }
     }
     p->updates++;
@@ -361,14 +366,11 @@ uint8_t svl_policy_reward(svl_policy_t *p, int32_t reward)
 /* CRC-16/MCRF4XX (the image checksum) over the little-endian bytes of 32-bit words. */
 static uint16_t crc_words(const uint32_t *words, uint16_t count)
 {
-    uint16_t crc = 0xFFFF, i;
-    uint8_t b, bit;
+    uint16_t crc = SVM_CRC16_INIT, i;
+    uint8_t b;
     for (i = 0; i < count; i++) {
         for (b = 0; b < 4; b++) {
-            crc ^= (uint8_t)(words[i] >> (8 * b));
-            for (bit = 0; bit < 8; bit++) {
-                crc = (crc & 1) ? (uint16_t)((crc >> 1) ^ 0x8408) : (uint16_t)(crc >> 1);
-            }
+            crc = svm_crc16_update(crc, (uint8_t)(words[i] >> (8 * b)));
         }
     }
     return crc;

@@ -78,6 +78,8 @@ typedef struct svl_policy {
     uint8_t baseline_shift;             /* baseline moves 2^-shift of the way to each reward */
     int32_t baseline;                   /* Q16 */
     uint32_t updates;
+    uint32_t moved;                     /* sum of |change| of the preferences (Q16, saturating)
+                                         * since the caller last cleared it (not saved) */
     /* the last choice, credited by svl_policy_reward */
     uint8_t pending;                    /* number of alternatives (0: nothing to credit) */
     uint8_t chosen;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -91,6 +92,24 @@ private:
 class UnknownEvent : public std::invalid_argument {
 public:
     using std::invalid_argument::invalid_argument;
+};
+
+// A check or an action threw; the original exception is nested (std::rethrow_if_nested).
+// The policy (docs/semantics.md, "Callbacks that raise"), as the Python VM's CallbackError: a
+// check that throws ends the step before any transition, so the VM is as it was before the
+// step; an action that throws ends the step after its own event's transition, which stays
+// applied. Either way the next step() runs normally.
+class CallbackError : public std::runtime_error {
+public:
+    CallbackError(std::string event, std::string kind, const std::string& cause)
+        : std::runtime_error("the " + kind + " of " + event + " threw: " + cause),
+          event_(std::move(event)), kind_(std::move(kind)) {}
+    const std::string& event() const { return event_; }   // the event's name
+    const std::string& kind() const { return kind_; }     // "check" or "action"
+
+private:
+    std::string event_;
+    std::string kind_;
 };
 
 // A set of events, bit e for event e, in Words 64-bit words (events 0 .. 64 Words - 1). Fixed
@@ -649,7 +668,13 @@ public:
 
     // The pieces of a step, for the compatibility layer's exact mode (BasicSCT): the check of
     // an event (false without one) and an event's transitions followed by its action.
-    bool poll(unsigned event) { return checks_[event] && checks_[event](data_[event]); }
+    bool poll(unsigned event) {
+        try {
+            return checks_[event] && checks_[event](data_[event]);
+        } catch (...) {
+            callback_threw(event, "check");
+        }
+    }
     void fire(unsigned event) { apply(event); }
 
     const Image& image() const { return image_; }
@@ -749,12 +774,11 @@ private:
 
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
-        fired_.clear();
         M current;
         for (unsigned e : derived_.input_order) {
-            const Check& check = checks_[e];
-            if (check && check(data_[e])) current.set(e);
+            if (poll(e)) current.set(e);
         }
+        fired_.clear();     // after the checks: one that throws leaves the last step's events
         M occurred = current;
         if (options_.inputs == Inputs::edge) occurred = previous.complement_in(current);
         previous = current;
@@ -799,7 +823,25 @@ private:
                 states_[s] = image_.targets[static_cast<std::size_t>(slot)];
             }
         }
-        if (actions_[event]) actions_[event](data_[event]);
+        if (actions_[event]) {
+            try {
+                actions_[event](data_[event]);
+            } catch (...) {
+                callback_threw(event, "action");
+            }
+        }
+    }
+
+    // Called in a catch block: the exception in flight nested in a CallbackError naming it.
+    [[noreturn]] void callback_threw(unsigned event, const char* kind) const {
+        std::string cause = "an exception that is not a std::exception";
+        try {
+            throw;
+        } catch (const std::exception& ex) {
+            cause = ex.what();
+        } catch (...) {
+        }
+        std::throw_with_nested(CallbackError(image_.event_name(event), kind, cause));
     }
 
     std::uint32_t weight(unsigned event) const {

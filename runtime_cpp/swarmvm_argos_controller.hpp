@@ -60,10 +60,17 @@ public:
     }
 
     // One VM step: the messages heard, the checks polled, at most one action (which may send).
+    // A check or action that throws stops the experiment with an ARGoS error naming the
+    // controller, the robot, the event and the callback (swarmvm::CallbackError); the step is
+    // not reported, and the VM is left as its policy says (docs/semantics.md).
     void ControlStep() override {
         ReadMessages();
         m_pcRABAct->ClearData();   // a message is broadcast for one control step
-        m_cReport.record(*m_pcVM, m_pcVM->step());
+        try {
+            m_cReport.record(*m_pcVM, m_pcVM->step());
+        } catch (const CallbackError& ex) {
+            THROW_ARGOSEXCEPTION(m_strName << " on robot " << GetId() << ": " << ex.what());
+        }
     }
 
     void Reset() override {

@@ -10,7 +10,9 @@ same code for the same bad image. Standard library only: it ships beside swarmvm
 robot too.
 """
 
+import binascii
 import enum
+import itertools
 import struct
 from typing import Dict, List, NamedTuple, Optional
 
@@ -103,26 +105,23 @@ class ImageError(ValueError):
         self.code = code
 
 
-def _crc16_byte(value: int) -> int:
-    """CRC-16/MCRF4XX of one byte from a zero register: one entry of the lookup table."""
-    for _ in range(8):
-        value = (value >> 1) ^ 0x8408 if value & 1 else value >> 1
-    return value
+# Each byte value with its bits in reverse order.
+_REVERSED = bytes(sum(1 << (7 - bit) for bit in range(8) if value >> bit & 1) for value in range(256))
 
 
-_CRC16_TABLE = tuple(_crc16_byte(value) for value in range(256))
+def _reverse16(value: int) -> int:
+    return _REVERSED[value & 0xFF] << 8 | _REVERSED[value >> 8]
 
 
 def crc16(data: bytes, crc: int = 0xFFFF) -> int:
     """CRC-16 with the reflected CCITT polynomial 0x8408, no final xor (CRC-16/MCRF4XX).
 
     It is what avr-libc's ``_crc_ccitt_update`` computes, so the Kilobot checks an image
-    with the library routine it already has. A byte at a time through a 256-entry table: in
-    Python the bit-by-bit loop was most of an image's load time."""
-    table = _CRC16_TABLE
-    for byte in data:
-        crc = (crc >> 8) ^ table[(crc ^ byte) & 0xFF]
-    return crc
+    with the library routine it already has. Computed by the standard library's table-driven
+    CRC-CCITT in C (``binascii.crc_hqx``, the same polynomial unreflected): a reflected CRC is
+    the unreflected one of the bit-reversed bytes, bit-reversed; a Python loop over the bytes
+    was most of an image's load time."""
+    return _reverse16(binascii.crc_hqx(bytes(data).translate(_REVERSED), _reverse16(crc)))
 
 
 def assemble(num_events: int, num_supervisors: int, num_states: int, num_transitions: int, state_width: int,
@@ -176,26 +175,25 @@ def _u16(raw: bytes, pos: int) -> int:
     return raw[pos] | (raw[pos + 1] << 8)
 
 
-class _Cursor:
-    """Reads the sections in order from a checked layout (no read can pass the checksum)."""
+def _numbers(raw: bytes, pos: int, count: int, width: int) -> List[int]:
+    """``count`` little-endian unsigned numbers of ``width`` (1 or 2) bytes at ``pos``."""
+    chunk = raw[pos:pos + count * width]
+    return list(chunk) if width == 1 else list(struct.unpack("<%dH" % count, chunk))
 
-    def __init__(self, raw: bytes, mask_bytes: int) -> None:
-        self.raw, self.mask_bytes, self.pos = raw, mask_bytes, HEADER_SIZE
 
-    def take(self, size: int) -> bytes:
-        self.pos += size
-        return self.raw[self.pos - size:self.pos]
+def _records(raw: bytes, pos: int, count: int, mask_bytes: int, fields: struct.Struct) -> tuple:
+    """``count`` records of a mask then ``fields`` (one-character codes) at ``pos``, decoded in
+    one pass: (the masks as ints, then each field's values), each a list, and the position
+    after them."""
+    record = _RECORDS.get((mask_bytes, fields))
+    if record is None:
+        record = _RECORDS[mask_bytes, fields] = struct.Struct("<%ds%s" % (mask_bytes, fields.format.lstrip("<")))
+    end = pos + count * record.size
+    columns = list(zip(*record.iter_unpack(raw[pos:end]))) or [()] * len(fields.format)
+    return ([int.from_bytes(mask, "little") for mask in columns[0]],) + tuple(map(list, columns[1:])) + (end,)
 
-    def mask(self) -> int:
-        return int.from_bytes(self.take(self.mask_bytes), "little")
 
-    def record(self, fields: struct.Struct) -> tuple:
-        return fields.unpack(self.take(fields.size))
-
-    def numbers(self, count: int, width: int) -> List[int]:
-        """``count`` little-endian unsigned numbers of ``width`` (1 or 2) bytes, in one slice."""
-        chunk = self.take(count * width)
-        return list(chunk) if width == 1 else list(struct.unpack("<%dH" % count, chunk))
+_RECORDS: Dict[tuple, struct.Struct] = {}     # (mask bytes, fields) -> the record's struct
 
 
 class Image:
@@ -246,30 +244,25 @@ class Image:
                                 % (h.num_events, h.mask_bytes, h.state_width, h.num_supervisors))
         if h.flags & ~KNOWN_FLAGS:
             raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (h.flags, KNOWN_FLAGS))
-        names_at = _check_sections(raw, h)
+        names = _check_sections(raw, h)
         m = h.mask_bytes
-        at = _Cursor(raw, m)
-        controllable, public = at.mask(), at.mask()
-        sup_alphabet, sup_first, sup_count, sup_init = [], [], [], []
-        for _ in range(h.num_supervisors):
-            sup_alphabet.append(at.mask())
-            first, count, initial = at.record(SUPERVISOR_RECORD)
-            sup_first.append(first)
-            sup_count.append(count)
-            sup_init.append(initial)
-        state_defined, state_first = [], []
-        for _ in range(h.num_states):
-            state_defined.append(at.mask())
-            state_first.append(at.record(STATE_RECORD)[0])
+        pos = HEADER_SIZE + 2 * m
+        controllable = int.from_bytes(raw[HEADER_SIZE:HEADER_SIZE + m], "little")
+        public = int.from_bytes(raw[HEADER_SIZE + m:pos], "little")
+        sup_alphabet, sup_first, sup_count, sup_init, pos = _records(raw, pos, h.num_supervisors, m, SUPERVISOR_RECORD)
+        state_defined, state_first, pos = _records(raw, pos, h.num_states, m, STATE_RECORD)
         width = h.state_width
-        targets = at.numbers(h.num_transitions, width)
-        probs = at.numbers(h.num_transitions, PROB.size) if h.flags & FLAG_PROBS else None
-        names = None
-        if names_at:
-            names = [at.take(at.take(1)[0]).decode("ascii") for _ in range(h.num_events)]
+        targets = _numbers(raw, pos, h.num_transitions, width)
+        pos += h.num_transitions * width
+        probs = None
+        if h.flags & FLAG_PROBS:
+            probs = _numbers(raw, pos, h.num_transitions, PROB.size)
+            pos += h.num_transitions * PROB.size
+        if names is not None:
+            pos += h.num_events + sum(map(len, names))
         order = state_order = None
         if h.flags & FLAG_ORDER:
-            order, state_order = at.numbers(h.num_events, 1), at.numbers(h.num_states, 2)
+            order, state_order = _numbers(raw, pos, h.num_events, 1), _numbers(raw, pos + h.num_events, h.num_states, 2)
         image = cls(raw, h.num_events, h.num_supervisors, controllable, public, sup_alphabet, sup_first,
                     sup_count, sup_init, state_defined, state_first, targets, probs, names, order, state_order)
         image._check_indices(h)
@@ -289,7 +282,10 @@ class Image:
                                                                           self.sup_initial[s], h.num_states))
             if self.sup_alphabet[s] & outside:
                 raise _layout_error("image supervisor %d's alphabet names events beyond the %d events" % (s, self.num_events))
-            for g in range(first, first + count):
+            if self._states_fit(first, count, h.num_transitions):
+                expected_first = first + count
+                continue
+            for g in range(first, first + count):      # find the first defect, to name it
                 defined, succ = self.state_defined[g], self.state_first[g]
                 if defined & outside:
                     raise _layout_error("image state %d has transitions on events beyond the %d events" % (g, self.num_events))
@@ -302,6 +298,16 @@ class Image:
             expected_first = first + count
         if expected_first != h.num_states:
             raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, h.num_states))
+
+    def _states_fit(self, first: int, count: int, num_transitions: int) -> bool:
+        """Whether the ``count`` states from ``first`` pass _check_indices's checks, in one pass
+        of C-level operations for the usual layout (each state's successors right after the
+        previous state's); False otherwise, and the caller looks state by state."""
+        defined = self.state_defined[first:first + count]
+        starts = self.state_first[first:first + count]
+        ends = list(itertools.accumulate([mask.bit_count() for mask in defined], initial=starts[0]))
+        return (max(defined) >> self.num_events == 0 and ends[:-1] == starts and ends[-1] <= num_transitions
+                and max(self.targets[starts[0]:ends[-1]], default=0) < count)
 
     def event_name(self, event: int) -> str:
         """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
@@ -317,9 +323,9 @@ class Image:
         return self.names.index(bare)
 
 
-def _check_sections(raw: bytes, h: Header) -> int:
-    """Where the names section starts (0: none), once the sections are known to end exactly at
-    the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
+def _check_sections(raw: bytes, h: Header) -> Optional[List[str]]:
+    """The event names (None: no names section), once the sections are known to end exactly
+    at the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
     m, end = h.mask_bytes, len(raw) - CRC_SIZE
     pos = (HEADER_SIZE + 2 * m + h.num_supervisors * (m + SUPERVISOR_RECORD.size)
            + h.num_states * (m + STATE_RECORD.size) + h.num_transitions * h.state_width)
@@ -327,9 +333,9 @@ def _check_sections(raw: bytes, h: Header) -> int:
         pos += h.num_transitions * PROB.size
     if pos > end:
         raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
-    names_at = 0
+    names = None
     if h.flags & FLAG_NAMES:
-        names_at = pos
+        names = []
         for event in range(h.num_events):
             if pos >= end:
                 raise _layout_error("image names section ends at event %d of %d" % (event, h.num_events))
@@ -340,6 +346,7 @@ def _check_sections(raw: bytes, h: Header) -> int:
             if not NAME_CHARS.issuperset(name):
                 raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
                                     % (event, name))
+            names.append(name.decode("ascii"))
             pos += 1 + size
     if h.flags & FLAG_ORDER:
         if pos + h.num_events + 2 * h.num_states > end:
@@ -349,4 +356,4 @@ def _check_sections(raw: bytes, h: Header) -> int:
         pos += h.num_events + 2 * h.num_states
     if pos != end:
         raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
-    return names_at
+    return names

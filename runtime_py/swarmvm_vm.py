@@ -6,14 +6,17 @@ crc16, FORMAT_VERSION). It implements the execution semantics of docs/semantics.
 the other runtimes (C, C++) are checked against this one trace for trace. The tables come from
 a table image (docs/image-format.md), either compiled into a generated module as a bytes
 literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "compiled in" and
-"loaded" are one code path.
+"loaded" are one code path. For speed, a VM writes its step out for its bindings and options
+(VM._bound, _stepper) and compiles it once; docs/api.md says what else the step and the load
+do ahead of time, and what they gained.
 """
 
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
-           "SCT", "SCTPub", "format_trace_line", "replay"]
+           "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
 
 import os
 import random
+import types
 
 from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
 
@@ -21,6 +24,8 @@ INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
+ENABLED_MEMO_LIMIT = 2048       # state combinations whose enabled set a VM remembers
+MEMO_PROBE = 256                # combinations met once after which a memo that does not pay is dropped
 
 
 def callback_stem(name):
@@ -85,13 +90,157 @@ def _bits(mask):
     return out
 
 
+def _check_args(count):
+    """The parameters of a written-out poll: each check and its data as a default argument."""
+    return "".join(", c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(count))
+
+
+def _poll_lines(events, wrap):
+    """Source lines that call each check ``c<i>`` with its data ``d<i>`` once, in order, and
+    ``add`` the event of each check that is true; ``wrap``: a check that raises raises
+    CallbackError naming its event (``event_name``), else the exception as it is. Written out
+    check by check because a loop over the checks cost a sixth of a step on models with many
+    inputs."""
+    body = [line for i, event in enumerate(events)
+            for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
+    if not wrap:
+        return body
+    return (["e = -1", "try:"] + ["    " + line for line in body + ["pass"]]
+            + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
+
+
+def _compiled(key, lines):
+    """The function ``make`` that the source ``lines`` define, compiled once per ``key`` (the
+    code depends on the events and options alone, not on the callbacks): _COMPILED."""
+    make = _COMPILED.get(key)
+    if make is None:
+        namespace: dict = {}
+        exec("\n".join(lines) + "\n", namespace)
+        if len(_COMPILED) >= MAX_COMPILED:
+            _COMPILED.clear()
+        make = _COMPILED[key] = namespace["make"]
+    return make
+
+
+_COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or step
+MAX_COMPILED = 64
+
+
+def _stepper(events, edge, quiet, uniform, strict, chooses, total):
+    """The maker of a VM's step written out for its plan: the checks of ``events`` polled
+    (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
+    inputs, if-quiet control, uniform policy, strict, a controllable event to choose) and, when
+    no input can violate (``total``), the inputs moved without a check. One frame per step,
+    the plan's parts its locals: on the smallest models the step is mostly that fixed cost."""
+    body = ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
+    body += ["fired = []", "add = fired.append"] + _poll_lines(events, True)
+    body += ["a = acts if vm._plan is plan else vm._bound()[0]"]
+    if edge:
+        body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
+                 "fired = [event for event in fired if not previous >> event & 1]",
+                 "vm.previous = current"]
+    body += ["if fired:"]
+    if total:
+        body += ["    states = vm.states",
+                 "    for event in fired:",
+                 "        for sup, successor in successors[event]:",
+                 "            states[sup] = successor[states[sup]]",
+                 "        if a[event] is not None:",
+                 "            vm._act(event, a[event])",
+                 "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
+    else:
+        body += ["    vm._fire(fired, a)"]
+    body += ["    return fired" if quiet or not chooses else "    a = (vm._plan or vm._bound())[0]"]
+    if chooses:
+        body += ["states = vm.states",
+                 "memo = vm._enabled_at",
+                 "entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
+                 "enabled, afters = entry or vm._enabled_now()",
+                 "if enabled:"]
+        body += (["    k = 0 if len(enabled) == 1 else vm.rng.below(len(enabled))", "    choice = enabled[k]"]
+                 if uniform else ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"])
+        body += ["    if afters is None:",
+                 "        vm._fire((choice,), a)",
+                 "    else:",
+                 "        states[:] = afters[k]",
+                 "        if a[choice] is not None:",
+                 "            vm._act(choice, a[choice])",
+                 "    fired.append(choice)"]
+    body += ["return fired"]
+    key = ("step", events, edge, quiet, uniform, strict, chooses, total)
+    return _compiled(key, ["def make(plan, acts, checks, datas, successors, event_name, CallbackError):",
+                           "    def step(vm%s):" % _check_args(len(events))]
+                     + ["        " + line for line in body] + ["    return step"])
+
+
+def _exact_stepper(events, public_first, chooses):
+    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper): the
+    checks of ``events`` polled in file order (raising as in the published VM), the true ones
+    fired in file order (``public_first``: public ones first, as SCTPub), then the published
+    choice among the enabled events in file order when there are controllable events."""
+    body = ["vm = sct.vm",
+            "if vm._plan is not vm_plan:",
+            "    sct._plan_exact()",
+            "    return sct.run_step()",
+            "fired = []",
+            "add = fired.append"] + _poll_lines(events, False)
+    body += ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
+    body += ["    true = fired",
+             "    fired = list(map(file_index.__getitem__, true))",
+             "    vm._fire(true, (vm._plan or vm._bound())[0])",
+             "    sct.input_buffer = list(fired)",
+             "else:",
+             "    sct.input_buffer = []"]
+    if chooses:
+        body += ["memo = vm._enabled_at",
+                 "entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's, inline",
+                 "enabled, afters = entry or vm._enabled_now()",
+                 "if enabled:",
+                 "    order = in_file_order.get(enabled)",
+                 "    if order is None:",
+                 "        order = in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))",
+                 "    choice, k = order[draw() % len(order)]",
+                 "    acts = (vm._plan or vm._bound())[0]",
+                 "    if afters is None:",
+                 "        vm._fire((enabled[k],), acts)",
+                 "    else:",
+                 "        vm.states[:] = afters[k]",
+                 "        if acts[enabled[k]] is not None:",
+                 "            vm._act(enabled[k], acts[enabled[k]])",
+                 "    fired.append(choice)"]
+    body += ["sct.last_events = fired"]
+    return _compiled(("exact", events, public_first, chooses),
+                     ["def make(vm_plan, checks, datas, file_index, private, in_file_order, draw):",
+                      "    def run_step(sct%s):" % _check_args(len(events))]
+                     + ["        " + line for line in body] + ["    return run_step"])
+
+
+class _Option:
+    """A run option of :class:`VM` (inputs, control, policy, strict) that the step is written
+    out for (VM._bound) rather than reads per step: setting one makes the VM plan again."""
+
+    def __set_name__(self, owner, name):
+        self.slot = "_" + name
+
+    def __get__(self, vm, owner=None):
+        return self if vm is None else getattr(vm, self.slot)
+
+    def __set__(self, vm, value):
+        setattr(vm, self.slot, value)
+        vm._replan()
+
+
 class VM:
     """The virtual machine: current states, inputs, generator, callbacks; ``step()`` evolves it.
 
     Options (docs/semantics.md): ``inputs`` level|edge, ``control`` after-inputs|if-quiet,
     ``policy`` uniform|first|weighted|learned (learned takes ``learner``, an object with
     ``choose(vm, enabled)`` returning one of ``enabled``), ``seed`` for the generator,
-    ``priority`` (event names, highest first) for ``first``."""
+    ``priority`` (event names, highest first) for ``first``. ``step`` is written out for the
+    bindings and options in force and installed on the VM (see _bound)."""
+
+    inputs, control, policy, strict = _Option(), _Option(), _Option(), _Option()
+    _plan: tuple | None     # see _bound
 
     def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
                  priority=None, learner=None, on_violation=None, strict=False):
@@ -103,8 +252,8 @@ class VM:
             raise ValueError("policy must be one of %s" % (POLICIES,))
         if policy == "learned" and learner is None:
             raise ValueError("policy 'learned' needs a learner")
-        self.inputs, self.control, self.policy = inputs, control, policy
-        self.seed, self.learner, self.on_violation, self.strict = seed, learner, on_violation, strict
+        self._inputs, self._control, self._policy, self._strict = inputs, control, policy, strict
+        self.seed, self.learner, self.on_violation = seed, learner, on_violation
         self._priority = priority
         self.actions, self.checks, self.data = {}, {}, {}
         self._install(image if isinstance(image, Image) else Image.parse(image))
@@ -118,33 +267,70 @@ class VM:
         uncontrollable = ((1 << image.num_events) - 1) & ~image.controllable
         # Check order: public uncontrollable events first, then private ones, each by name.
         self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
-        self.not_alphabet = [((1 << image.num_events) - 1) & ~a for a in image.sup_alphabet]
-        self.allowed, self.moves, self.weights = [], [], []
-        for sup in range(image.num_supervisors):
-            first = image.sup_first_state[sup]
-            allowed, moves, weights = [], [], []
-            for local in range(image.sup_num_states[sup]):
-                g = first + local
-                events = _bits(image.state_defined[g])
-                base = image.state_first[g]
-                allowed.append(image.state_defined[g] | self.not_alphabet[sup])
-                moves.append({e: image.targets[base + r] for r, e in enumerate(events)})
-                if image.probs is not None:
-                    weights.append({e: image.probs[base + r] for r, e in enumerate(events)})
-            self.allowed.append(allowed)
-            self.moves.append(moves)
-            self.weights.append(weights)
-        self.event_sups = [[s for s in range(image.num_supervisors) if image.sup_alphabet[s] >> e & 1]
-                           for e in range(image.num_events)]
+        controllable = image.controllable
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
-        self.successors = [[(sup, [moves.get(e) for moves in self.moves[sup]]) for sup in self.event_sups[e]]
-                           for e in range(image.num_events)]
-        self._polls = None
+        # The gates: the supervisors that can disable a controllable event, each with the
+        # controllable events it allows in each of its states (the enabled set is their AND).
+        self.weights, gates = [], []
+        pairs_of: list = [[] for _ in range(image.num_events)]
+        self._moves = None
+        events_of: dict = {}    # a state's defined mask -> its events (states share masks)
+        inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
+        targets, probs = image.targets, image.probs
+        for sup, first, count, alphabet in zip(range(image.num_supervisors), image.sup_first_state,
+                                               image.sup_num_states, image.sup_alphabet):
+            defined = image.state_defined[first:first + count]
+            outside = controllable & ~alphabet      # the controllable events it cannot disable
+            gate = [(mask & controllable) | outside for mask in defined]
+            if min(gate) != controllable:
+                gates.append((sup, gate))
+            columns = {e: [None] * count for e in _bits(alphabet)}
+            weights = []
+            for local, (mask, base) in enumerate(zip(defined, image.state_first[first:first + count])):
+                events = events_of.get(mask)
+                if events is None:
+                    events = events_of[mask] = _bits(mask)
+                successors = targets[base:base + len(events)]
+                if probs is not None:
+                    weights.append(dict(zip(events, probs[base:base + len(events)])))
+                for e, target in zip(events, successors):
+                    columns[e][local] = target
+            self.weights.append(weights)
+            for e, column in columns.items():
+                pairs_of[e].append((sup, column))
+                if not controllable >> e & 1 and None in column:
+                    inputs_total = False
+        self.successors = [tuple(pairs) for pairs in pairs_of]
+        # When no state of any supervisor leaves an uncontrollable event undefined, no input can
+        # violate, and the step moves the inputs by these successors without a check (else None).
+        self._total = self.successors if inputs_total else None
+        self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
+        self._gates = tuple(gates)
+        self._replan()
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
+        # The enabled events of each combination of states met (``tuple(states)`` -> events):
+        # one lookup where a run keeps to a few combinations (see _enabled_now).
+        self._enabled_at: dict | None = {}
+        self._met_once = set()      # combinations met once, not yet in _enabled_at
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
-        self.rank = [listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+        self.rank = ([listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
+                     if listed else list(range(image.num_events)))
+
+    @property
+    def moves(self):
+        """Per supervisor, per state: {event: successor}, built from ``successors`` on first use
+        (the step does not use it)."""
+        if self._moves is None:
+            moves: list = [[{} for _ in range(count)] for count in self.image.sup_num_states]
+            for event, pairs in enumerate(self.successors):
+                for sup, column in pairs:
+                    for local, target in enumerate(column):
+                        if target is not None:
+                            moves[sup][local][event] = target
+            self._moves = moves
+        return self._moves
 
     def load(self, image):
         """Swap in a new table image between two steps; states restart from its initial states.
@@ -191,7 +377,7 @@ class VM:
             self.checks[index] = check
         self.data[index] = data
         self._bindings_checked = False
-        self._polls = None
+        self._replan()
 
     def bind_controller(self, controller):
         """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
@@ -219,32 +405,114 @@ class VM:
         self.rng = XorShift32(self.seed)
 
     def _enabled_mask(self):
-        mask = self.image.controllable
-        for allowed, state in zip(self.allowed, self.states):
-            mask &= allowed[state]
+        """The controllable events every supervisor allows in its state: an AND over the gates."""
+        mask, states = self.image.controllable, self.states
+        for sup, masks in self._gates:
+            mask &= masks[states[sup]]
         return mask
 
     def enabled(self):
         """Controllable events enabled by every supervisor, in canonical order."""
         return _bits(self._enabled_mask())
 
-    def _apply(self, event):
-        states = self.states
-        for sup, successor in self.successors[event]:
-            target = successor[states[sup]]
-            if target is None:
+    def _enabled_now(self):
+        """(the enabled events at the current states, a tuple in canonical order; the states
+        after each of them, or None). A combination of states met for the first time gets its
+        events (_enabled_mask); met again, also the states after each event (an enabled
+        event cannot violate: every supervisor that has it defines it here), and the pair is
+        remembered, so that a run that keeps to a few combinations steps by lookups. The memo
+        is dropped at ENABLED_MEMO_LIMIT combinations (memory stays bounded), or earlier when
+        of MEMO_PROBE combinations met under a quarter were met again (a product too big to
+        pay off: its lookups would only cost)."""
+        states, memo, met = self.states, self._enabled_at, self._met_once
+        entry = memo.get(tuple(states)) if memo is not None else None
+        if entry is not None:
+            return entry
+        mask = self._enabled_mask()
+        enabled = self._enabled_sets.get(mask)
+        if enabled is None:
+            enabled = self._enabled_sets[mask] = tuple(_bits(mask))
+        if memo is None:
+            return enabled, None
+        key = tuple(states)
+        if len(met) + len(memo) >= ENABLED_MEMO_LIMIT or (len(met) >= MEMO_PROBE and 4 * len(memo) < len(met)):
+            self._enabled_at = None
+            met.clear()
+            return enabled, None
+        if key not in met:
+            met.add(key)
+            return enabled, None
+        afters = []
+        for event in enabled:
+            after = list(states)
+            for sup, successor in self.successors[event]:
+                after[sup] = successor[after[sup]]
+            afters.append(tuple(after))
+        met.discard(key)
+        entry = memo[key] = (enabled, tuple(afters))
+        return entry
+
+    def _bound(self):
+        """The plan: what the step needs of the bindings, the options and the tables, made
+        after a bind, a load or a change of option. It is (per event its (action, data) or None,
+        whether there is a controllable event); making it also writes the step out for it
+        (_stepper) and installs that on the VM, where ``vm.step`` finds it before the class's."""
+        plan = self._plan
+        if plan is None:
+            checks, actions, data = self.checks, self.actions, self.data
+            polls = [(e, checks[e], data.get(e)) for e in self.input_order if e in checks]
+            acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
+            chooses = bool(self.image.controllable)
+            plan = self._plan = (acts, chooses)
+            make = _stepper(tuple(e for e, _, _ in polls), self.inputs == "edge", self.control == "if-quiet",
+                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None)
+            step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors,
+                        self.image.event_name, CallbackError)
+            self.__dict__["step"] = types.MethodType(step, self)
+        return plan
+
+    def _replan(self):
+        """Drop the plan and the step written out for it."""
+        self._plan = None
+        self.__dict__.pop("step", None)
+
+    def _check_bindings(self):
+        """Strict mode, before a step: every uncontrollable event has a check."""
+        if self.unbound_checks():
+            raise UnboundEvents(self.unbound_checks())
+        self._bindings_checked = True
+
+    def _fire(self, events, acts):
+        """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
+        counts a violation), then its action from ``acts`` (the bound plan's) runs. A callback
+        may rebind or set ``states``: what it changed holds for the events after it."""
+        states, successors = self.states, self.successors
+        for event in events:
+            for sup, successor in successors[event]:
+                target = successor[states[sup]]
+                if target is not None:
+                    states[sup] = target
+                    continue
                 if self.violations != MAX_VIOLATIONS:
                     self.violations += 1
                 if self.on_violation is not None:
                     self.on_violation(event, sup)
-            else:
-                states[sup] = target
-        action = self.actions.get(event)
-        if action is not None:
-            try:
-                action(self.data.get(event))
-            except Exception as exc:
-                raise CallbackError(self.image.event_name(event), "action", exc) from exc
+                    states, acts = self.states, self._bound()[0]
+            act = acts[event]
+            if act is not None:
+                self._act(event, act)
+                states, acts = self.states, self._bound()[0]
+
+    def _act(self, event, act):
+        """Run an event's bound (action, data); CallbackError if the action raises."""
+        try:
+            act[0](act[1])
+        except Exception as exc:
+            raise CallbackError(self.image.event_name(event), "action", exc) from exc
+
+    def _apply(self, event):
+        """Fire one event (the conformance tests re-derive enabled sets with it)."""
+        self._fire((event,), self._bound()[0])
 
     def _weight(self, event):
         weight = Q15_ONE
@@ -275,38 +543,11 @@ class VM:
         raise AssertionError("unreachable: pick below total")
 
     def step(self):
-        """One VM step; returns the events that fired, in order (indices)."""
-        if self.strict and not self._bindings_checked:
-            if self.unbound_checks():
-                raise UnboundEvents(self.unbound_checks())
-            self._bindings_checked = True
-        polls = self._polls
-        if polls is None:
-            polls = self._polls = [(e, self.checks[e], self.data.get(e)) for e in self.input_order if e in self.checks]
-        polled = -1     # the event whose check runs: named if it raises
-        try:
-            true = [event for event, check, data in polls if (polled := event) >= 0 and check(data)]
-        except Exception as exc:
-            raise CallbackError(self.image.event_name(polled), "check", exc) from exc
-        if self.inputs == "level":
-            fired = true
-        else:
-            previous, current = self.previous, sum(1 << event for event in true)
-            fired = [event for event in true if not previous >> event & 1]
-            self.previous = current
-        for event in fired:
-            self._apply(event)
-        if fired and self.control == "if-quiet":
-            return fired
-        mask = self._enabled_mask()
-        if mask:
-            enabled = self._enabled_sets.get(mask)
-            if enabled is None:     # a set of enabled events met for the first time
-                enabled = self._enabled_sets[mask] = tuple(_bits(mask))
-            choice = self.select(enabled)
-            self._apply(choice)
-            fired.append(choice)
-        return fired
+        """One VM step; returns the events that fired, in order (indices). This runs once per
+        plan: making the plan (_bound) installs the step written out for it, which runs from
+        then on."""
+        self._bound()
+        return self.step()
 
 
 def format_trace_line(step, names, states, violations):
@@ -314,20 +555,43 @@ def format_trace_line(step, names, states, violations):
     return "%d %s %s %d" % (step, ",".join(names) or "-", ",".join(str(s) for s in states), violations)
 
 
-def replay(vm, rows):
-    """Run ``vm`` from reset on an event script (a list of sets of event indices, one per step)
-    and return the canonical trace lines. This is the reference conformance harness: the C and
-    C++ harnesses do exactly this and must print the same lines."""
+def replay_lines(vm, rows):
+    """Run ``vm`` from reset on an event script (an iterable of sets of event indices, one per
+    step), producing the canonical trace lines one step at a time (constant memory). This is
+    the reference conformance harness: the C and C++ harnesses do exactly this and must print
+    the same lines."""
     script: dict = {"row": set()}
     for event in vm.input_order:
         vm.bind(event, check=lambda _data, event=event: event in script["row"])
     vm.reset()
-    lines = []
+    name = vm.image.event_name
     for number, row in enumerate(rows, 1):
         script["row"] = row
         fired = vm.step()
-        lines.append(format_trace_line(number, [vm.image.event_name(e) for e in fired], vm.states, vm.violations))
-    return lines
+        yield format_trace_line(number, [name(e) for e in fired], vm.states, vm.violations)
+
+
+def replay(vm, rows):
+    """The lines of :func:`replay_lines`, as a list."""
+    return list(replay_lines(vm, rows))
+
+
+_RANDINT = random.randint
+
+
+def _published_draw():
+    """``random.randint(0, 1000000000)``, the published VM's draw, from the global generator.
+    While ``random.randint`` is the standard one, CPython's own draw is made directly, bit for
+    bit (randint -> randrange -> Random._randbelow_with_getrandbits: getrandbits(30) until at
+    most 10^9), without randint's three Python-level calls, a third of a small model's exact
+    step; tests/python/test_sct_exact.py checks the two agree."""
+    if random.randint is not _RANDINT:
+        return random.randint(0, 1000000000)
+    getrandbits = random.getrandbits
+    draw = getrandbits(30)
+    while draw > 1000000000:
+        draw = getrandbits(30)
+    return draw
 
 
 class SCT:
@@ -368,12 +632,12 @@ class SCT:
         self.num_supervisors = image.num_supervisors
         self.last_events, self.input_buffer = [], []
         if exact:
-            order = range(len(self._canonical))
-            inputs = [i for i in order if not self.ev_controllable[i]]
-            public = [i for i in inputs if image.public >> self._canonical[i] & 1]
-            self._checks_order = inputs
-            self._apply_order = public + [i for i in inputs if i not in public] if self._public_first else inputs
-            self._file_index = {c: i for i, c in enumerate(self._canonical)}
+            self._checks_order = [i for i in range(len(self._canonical)) if not self.ev_controllable[i]]
+            self._file_index = [0] * len(self._canonical)
+            for i, c in enumerate(self._canonical):
+                self._file_index[c] = i
+            self._private = [0 if image.public >> c & 1 else 1 for c in range(image.num_events)]
+            self._in_file_order: dict = {}
 
     @property
     def sup_current_state(self):
@@ -389,28 +653,28 @@ class SCT:
 
     def run_step(self):
         """One step; ``last_events`` are the events it applied and ``input_buffer`` the
-        uncontrollable ones whose check was true (indices as in ``EV``)."""
+        uncontrollable ones whose check was true (indices as in ``EV``). In exact mode this
+        runs once per plan of the VM: it installs the step written out for it (_plan_exact)."""
         if not self.exact:
             fired = self.vm.step()
             self.last_events = fired
             self.input_buffer = [e for e in fired if not self.ev_controllable[e]]
             return
+        self._plan_exact()
+        return self.run_step()
+
+    def _plan_exact(self):
+        """Write the exact step out for the VM's current plan (_exact_stepper) and install it on
+        this object, where ``run_step`` finds it before the class's; it plans again when the
+        VM's plan changes."""
         vm, canonical = self.vm, self._canonical
-        true = set()
-        for i in self._checks_order:
-            check = vm.checks.get(canonical[i])
-            if check is not None and check(vm.data.get(canonical[i])):
-                true.add(i)
-        fired = [i for i in self._apply_order if i in true]
-        for i in fired:
-            vm._apply(canonical[i])
-        self.input_buffer = list(fired)
-        enabled = sorted(self._file_index[c] for c in vm.enabled())
-        if enabled:
-            choice = enabled[random.randint(0, 1000000000) % len(enabled)]
-            vm._apply(canonical[choice])
-            fired.append(choice)
-        self.last_events = fired
+        vm_plan = vm._plan or vm._bound()
+        polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
+                 for i in self._checks_order if canonical[i] in vm.checks]
+        make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1])
+        step = make(vm_plan, [c for _, c, _ in polls], [d for _, _, d in polls], self._file_index, self._private,
+                    self._in_file_order, _published_draw)
+        self.__dict__["run_step"] = types.MethodType(step, self)
 
     def get_events(self):
         return self.EV, self.ev_controllable

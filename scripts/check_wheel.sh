@@ -38,6 +38,8 @@ verbs() {
   "$cli" check --properties "$example"
   "$cli" export "$example" --format gen -o export && "$cli" export "$example" --format dot -o export
   "$cli" bounds energy && "$cli" bounds energy --strategy mobile --json
+  # the energy study's C++ sources and supervisors travel in the wheel: the same plugin, the same trial
+  "$cli" sim energy --strategy mobile --chargers 3 --duration 60 --seed 2 | grep -v '^seconds'
 }
 for install in editable wheel; do
   mkdir -p "$work/run-$install"

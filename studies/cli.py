@@ -211,3 +211,6 @@ def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate
         return
     for key, value in result.items():
         click.echo("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))
+
+
+from . import energy_commands  # noqa: E402,F401  (registers `sim|sweep|plot energy`)

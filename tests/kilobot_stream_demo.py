@@ -143,7 +143,7 @@ void svm_kilobot_after_step(void)
     nfired = 0;
 }
 
-void %(name)s_on_stream(uint8_t status, uint16_t value)
+void %(name)s_stream_status(uint8_t status, uint16_t value)
 {
     switch (status) {
     case SVM_STREAM_RECEIVING:

@@ -100,11 +100,15 @@ static void put_trace_line(unsigned long step)
     (void)putchar('\n');
 }
 
-/* Compiled-in logic first, then the flash page's if it holds a valid image. */
+/* Compiled-in logic first, then the flash page's if it holds a valid image. A refused
+ * compiled-in image (corrupted: SVM_ERR_CRC) is reported and nothing runs, as on the robot. */
 static int load_logic(void)
 {
-    int page;
-    if (APP_LOAD(&vm) != SVM_OK) {
+    int page = APP_LOAD(&vm);
+    if (page != SVM_OK) {
+        (void)fputs("compiled-in " APP_NAME(SVM_APP) ": refused (swarmvm error ", stderr);
+        svm_put_decimal(to_stderr, (uint32_t)page);
+        (void)fputs(")\n", stderr);
         return 0;
     }
     page = svm_logic_page_load(&vm, APP_IMAGE, (uint16_t)sizeof APP_IMAGE, to_compiled);

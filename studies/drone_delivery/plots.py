@@ -8,6 +8,8 @@ from typing import List
 
 import numpy as np
 
+from ..plotting import pyplot as _pyplot
+from ..plotting import save as _save
 from .metrics import winner_soh_map
 from .sweep import load, summarise
 
@@ -15,21 +17,6 @@ COLOURS = {"least-confident": "#1b9e77", "most-confident": "#e7298a", "random": 
 MAP_SOCS = np.arange(10, 101, 10)
 MAP_DISTANCES = np.arange(1000, 5001, 50)
 MAP_MASSES = np.round(np.arange(0.5, 5.0001, 0.05), 2)
-
-
-def _pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    plt.rcParams.update({"font.size": 8, "svg.hashsalt": "swarmvm"})
-    return plt
-
-
-def _save(figure, path: Path) -> Path:
-    figure.tight_layout()
-    figure.savefig(str(path), dpi=110, metadata={"Software": None})
-    figure.clf()
-    return path
 
 
 def _label(trials):

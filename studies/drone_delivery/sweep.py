@@ -1,24 +1,17 @@
-"""Sweeps of trials: the seed's grid (rules and thresholds x tau x runs), run on local processes
-or on a Dask cluster, resumable, written as tidy Parquet tables.
+"""Sweeps of trials: the seed's grid (rules and thresholds x tau x runs), run by the studies'
+shared runner (studies/sweeps.py: local processes or a Dask cluster, resumable, tidy Parquet).
 
-Every trial is a pure function of its :class:`Params` (its seed included), so results do not
-depend on where or in which order trials run. Each finished trial is written as one Parquet
-file per table under ``OUT/<table>/<key>.parquet``, the ``trials`` file last (its presence marks
-the trial done); a rerun skips done trials. Tables: ``trials`` (one row per trial),
-``accuracy`` (trial x week x drone), ``backlog`` (trial x arrival week), ``drones`` (trial x drone:
-health and final policy)."""
+Every trial is a pure function of its :class:`Params` (its seed included). Tables: ``trials``
+(one row per trial), ``accuracy`` (trial x week x drone), ``backlog`` (trial x arrival week),
+``drones`` (trial x drone: health and final policy)."""
 
 from __future__ import annotations
 
-import hashlib
-import json
-import os
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from pathlib import Path
 from typing import TYPE_CHECKING, Dict, Iterable, List, Optional, Sequence
 
 import numpy as np
 
+from .. import sweeps
 from .engine import run
 from .params import Params
 
@@ -41,9 +34,8 @@ def grid(base: Params, rules: Sequence[str] = LEARNING_RULES, thresholds: Sequen
 
 def trial_key(params: Params) -> str:
     """A readable, unique file name for a trial."""
-    digest = hashlib.sha1(json.dumps(params.to_dict(), sort_keys=True).encode()).hexdigest()[:10]
     rule = params.rule if params.rule != "threshold" else "threshold%g" % params.threshold
-    return "%s-tau%g-seed%d-%s" % (rule, params.tau_min, params.seed, digest)
+    return "%s-tau%g-seed%d-%s" % (rule, params.tau_min, params.seed, sweeps.digest(params.to_dict()))
 
 
 def run_trial(params: Params) -> Dict[str, list]:
@@ -66,74 +58,17 @@ def run_trial(params: Params) -> Dict[str, list]:
     return dict(trials=[row], accuracy=accuracy, backlog=backlog, drones=drones)
 
 
-def write_trial(out: Path, key: str, tables: Dict[str, list]) -> None:
-    import pandas as pd
-    for table in TABLES:
-        folder = out / table
-        folder.mkdir(parents=True, exist_ok=True)
-        temp = folder / (".%s.tmp" % key)
-        pd.DataFrame(tables[table]).to_parquet(temp, index=False)
-        os.replace(temp, folder / ("%s.parquet" % key))
-
-
-def done_keys(out: Path) -> set:
-    folder = out / "trials"
-    return {p.stem for p in folder.glob("*.parquet")} if folder.exists() else set()
-
-
 def sweep(specs: Sequence[Params], out, workers: int = 1, scheduler: Optional[str] = None,
           progress: bool = True) -> int:
-    """Run the trials of ``specs`` not yet in ``out``; returns how many ran. ``scheduler``: a
-    Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``; otherwise
-    ``workers`` local processes (1: in this process)."""
-    from tqdm import tqdm
-    out = Path(out)
-    done = done_keys(out)
-    todo = [p for p in specs if trial_key(p) not in done]
-    bar = tqdm(total=len(todo), disable=not progress, unit="trial")
-    for params, tables in _results(todo, workers, scheduler):
-        write_trial(out, trial_key(params), tables)
-        bar.update(1)
-    bar.close()
-    return len(todo)
-
-
-def _results(todo: List[Params], workers: int, scheduler):
-    """(params, tables) as trials finish."""
-    if not todo:
-        return
-    if scheduler is not None:
-        from distributed import Client, as_completed as dask_completed
-        client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
-        try:
-            futures = client.map(run_trial, todo, key=[trial_key(p) for p in todo])
-            by_key = {f.key: p for f, p in zip(futures, todo)}
-            for future in dask_completed(futures):
-                yield by_key[future.key], future.result()
-        finally:
-            if client is not scheduler:
-                client.close()
-    elif workers <= 1:
-        for params in todo:
-            yield params, run_trial(params)
-    else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = {pool.submit(run_trial, p): p for p in todo}
-            for future in as_completed(futures):
-                yield futures[future], future.result()
+    """Run the trials of ``specs`` not yet in ``out``; returns how many ran (studies/sweeps.py:
+    ``workers`` local processes, or a Dask ``scheduler`` address or client)."""
+    return sweeps.run(specs, trial_key, run_trial, out, TABLES, workers=workers, scheduler=scheduler,
+                      progress=progress)
 
 
 def load(out) -> Dict[str, "pandas.DataFrame"]:
     """Every table of a sweep, sorted (trial key, then the table's own index columns)."""
-    import pandas as pd
-    out = Path(out)
-    frames = {}
-    for table in TABLES:
-        files = sorted((out / table).glob("*.parquet"))
-        frame = pd.concat([pd.read_parquet(f) for f in files], ignore_index=True) if files else pd.DataFrame()
-        index = [c for c in ("key", "week", "arrival_week", "drone") if c in frame.columns]
-        frames[table] = frame.sort_values(index).reset_index(drop=True) if index else frame
-    return frames
+    return sweeps.load(out, TABLES, ("key", "week", "arrival_week", "drone"))
 
 
 def summarise(frames) -> "pandas.DataFrame":

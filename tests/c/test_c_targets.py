@@ -11,6 +11,7 @@ import pytest
 
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference
+from corrupted import corrupt_compiled_in_image
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
 
@@ -150,3 +151,66 @@ def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
     # runtime's last step), and setup never signalled a refused image.
     assert run.end[:1] == (40,) and run.ram >= 39
     assert RED not in [colour for tick, colour in run.leds if tick > run.rx[0].tick]
+
+
+def test_a_corrupted_compiled_in_image_is_refused_at_start_up_on_the_host(tmp_path):
+    gen(EXAMPLE, "c", tmp_path, "energy_worker")
+    corrupt_compiled_in_image(tmp_path / "energy_worker_tables.c")
+    subprocess.run(["make", "-s"], cwd=tmp_path, check=True, capture_output=True)
+    run = subprocess.run([str(tmp_path / "energy_worker"), "10"], capture_output=True, text=True, timeout=10)
+    assert run.returncode == 1 and run.stdout == ""
+    assert run.stderr == ("%s: the compiled-in table image was refused (swarmvm error 4: its checksum does not "
+                          "match, the image is corrupted)\n" % (tmp_path / "energy_worker"))
+
+
+@pytest.mark.emulator
+def test_a_corrupted_compiled_in_image_halts_the_kilobot_in_red(tmp_path):
+    """On the Kilobot board in simavr: the refused image shows red from set-up on, and the VM,
+    holding no image, fires nothing: the LED never changes again (a running controller shows
+    each fired event's colour, test_kilobot_application_fits_and_runs) and nothing is sent."""
+    board_or_skip()
+    name = "energy_worker"
+    gen(EXAMPLE, "kilobot", tmp_path, name)
+    corrupt_compiled_in_image(tmp_path / (name + "_tables.c"))
+    subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), name + ".elf"], cwd=tmp_path, check=True,
+                   capture_output=True)
+    run = board.run(tmp_path / (name + ".elf"), ticks=40)
+    assert run.end[:1] == (40,)
+    colours = [colour for _, colour in run.leds]      # kilolib's start-up colours, then set-up's
+    assert RED in colours and colours[colours.index(RED):] == [RED] and run.tx == []
+
+
+# Names that gave C which did not compile (issue 12): an event `stream` (the Kilobot stream hook
+# was <model>_on_stream, the action of such an event), `x` beside `received_x`, and a model
+# name that is not ASCII (avr-gcc refuses such identifiers; it becomes ouvri_re).
+AWKWARD = """num_events: 4
+num_supervisors: 1
+events: [ EV_stream,EV__stream,EV_x,EV_received_x ]
+ev_controllable: [ 1,0,1,0 ]
+ev_shared: [ 1,1,0,0 ]
+sup_events: [ [ 1,1,1,1 ] ]
+sup_init_state: [ 0 ]
+sup_current_state: [ 0 ]
+sup_data_pos: [ 0 ]
+sup_data: [ 4,EV_stream,0,0,EV__stream,0,0,EV_x,0,0,EV_received_x,0,0 ]
+"""
+
+
+@pytest.mark.parametrize("stem", ["stream", "ouvrière"])
+def test_awkward_names_compile_for_the_kilobot_and_the_host(stem, tmp_path):
+    model = tmp_path / (stem + ".yaml")
+    model.write_text(AWKWARD)
+    name = "ouvri_re" if stem == "ouvrière" else stem
+    for stream in (False, True):
+        out = tmp_path / ("kilobot_stream" if stream else "kilobot")
+        subprocess.run(["swarmvm", "gen", str(model), "--target", "kilobot", "-o", str(out)], check=True,
+                       capture_output=True)
+        build = subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
+                                *(["STREAM=1"] if stream else []), name + ".elf"], cwd=out, capture_output=True, text=True)
+        assert build.returncode == 0 and (out / (name + ".elf")).is_file(), build.stderr
+    host = tmp_path / "c"
+    subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(host)], check=True, capture_output=True)
+    build = subprocess.run(["make", "-s", "CFLAGS=%s -O2 -DSVM_STEPS=20" % " ".join(STRICT)], cwd=host,
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr
+    assert subprocess.run([str(host / name)], timeout=10).returncode == 0

@@ -21,7 +21,8 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Wconversion", "-Werror", "-pedantic"
 AVR = ["-mmcu=atmega328p"]
 KILOBOT = c_harness.KILOBOT_FLAGS
 ARM = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16"]
-CORE = [RUNTIME_C / "swarmvm.c", RUNTIME_C / "swarmvm_sct.c"]
+CORE = [RUNTIME_C / "swarmvm.c", RUNTIME_C / "swarmvm_sct.c", RUNTIME_C / "swarmvm_store.c",
+        RUNTIME_C / "swarmvm_learn.c", RUNTIME_C / "swarmvm_learn_store.c"]
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 
 COMPILERS = {
@@ -31,6 +32,7 @@ COMPILERS = {
     "avr-gcc-O3": ["avr-gcc", *AVR, "-O3"],
     "avr-gcc-kilobot": ["avr-gcc", *KILOBOT],
     "avr-gcc-kilobot-flash-only": ["avr-gcc", *KILOBOT, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"],
+    "avr-gcc-kilobot-learned": ["avr-gcc", *KILOBOT, "-DSVM_LEARNED=1", "-DSVM_KILOBOT_THETA=32"],
     "avr-gcc-kilobot-ram-only": ["avr-gcc", *KILOBOT, "-DSVM_IMAGE_SOURCES=SVM_RAM_ONLY"],
     "avr-gcc-kilobot-any-source": ["avr-gcc", *KILOBOT, "-DSVM_IMAGE_SOURCES=SVM_ANY_SOURCE", "-DSVM_HARNESS_EEPROM",
                                    "-DSVM_HARNESS_CYCLES"],

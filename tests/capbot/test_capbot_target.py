@@ -15,6 +15,7 @@ from conformance import qemu_harness
 from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS
 from checkout import ROOT
+from corrupted import corrupt_compiled_in_image
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
@@ -24,7 +25,8 @@ EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
                   "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
                   "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/swarmvm_logic_page.h",
-                  "src/swarmvm_logic_page.c"}
+                  "src/swarmvm_logic_page.c", "learned.conf"} | {
+                  "src/swarmvm_%s.%s" % (m, x) for m in ("learn", "learn_store", "store", "store_zephyr") for x in "ch"}
 
 
 def gen(model, outdir, name="energy_worker"):
@@ -83,13 +85,15 @@ def test_generation_is_deterministic_and_path_free(tmp_path):
         assert str(tmp_path).encode() not in data and str(ROOT).encode() not in data, name
 
 
+@pytest.mark.parametrize("learned", [(), ("-DSVM_LEARNED=1", "-DSVM_MAX_STATES=16")], ids=["plain", "learned"])
 @pytest.mark.parametrize("compiler", ["gcc", "clang", "arm-none-eabi-gcc"])
-def test_every_source_compiles_without_warning(app, compiler, tmp_path):
+def test_every_source_compiles_without_warning(app, compiler, learned, tmp_path):
     """All of src/ (main.c against firmware/capbot's declaration-only Zephyr and CapBot
-    headers), C99 with -Wall -Wextra -Werror -pedantic."""
+    headers; with -DSVM_LEARNED=ON's definitions too: the store on Zephyr's flash map), C99
+    with -Wall -Wextra -Werror -pedantic."""
     cpu = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16"] if compiler.startswith("arm") else []
     for source in sorted((app / "src").glob("*.c")):
-        subprocess.run([compiler, *WARNINGS, *cpu, "-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=4",
+        subprocess.run([compiler, *WARNINGS, *cpu, *learned, "-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=4",
                         "-I", str(qemu_harness.CAPBOT), "-I", str(app / "src"), "-c", str(source),
                         "-o", str(tmp_path / (source.stem + ".o"))], check=True)
 
@@ -119,3 +123,15 @@ def test_make_builds_an_image_for_every_corpus_supervisor():
                          ["/nonexistent/capbot/%s.elf" % p.rsplit("/", 1)[1][:-5] for p in SUPERVISORS],
                          check=True, capture_output=True, text=True).stdout
     assert out.count("--target capbot") == len(SUPERVISORS)
+
+
+def test_a_corrupted_compiled_in_image_is_refused_in_qemu(tmp_path):
+    """The application linked by mk/capbot.mk, its compiled-in image with one bit flipped: QEMU
+    shows the refusal with SVM_ERR_CRC (4) and no step, exit status 1."""
+    elf = build_with_make(tmp_path, "energy_worker")
+    corrupt_compiled_in_image(tmp_path / "capbot" / "gen" / "energy_worker" / "src" / "energy_worker_tables.c")
+    elf.unlink()
+    build_with_make(tmp_path, "energy_worker")
+    status, stdout, stderr = qemu_harness.run(elf, timeout=30)
+    assert status == 1 and stdout == ""
+    assert stderr == "compiled-in energy_worker: refused (swarmvm error 4)\n"

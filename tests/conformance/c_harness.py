@@ -21,7 +21,10 @@ KILOBOT_FLAGS = ["-mmcu=atmega328p", "-O3", "-funsigned-char", "-funsigned-bitfi
                  "-fpack-struct", "-fshort-enums", "-DF_CPU=8000000"]
 AVR_RAM = 2048
 AVR_EEPROM = 1024
-AVR_STACK_RESERVE = 200     # bytes left for the stack when deciding on the loaded pass
+# Stack kept free beyond the deepest frame (-fstack-usage): the harness's frames, return
+# addresses and the timer interrupt (network_worker's dispatch build runs with 228 bytes of
+# stack in all, its deepest frame 79).
+AVR_STACK_RESERVE = 120
 SIMAVR_TIMEOUT = 120
 
 OPTION_BITS = {"level": 0x00, "edge": 0x01, "after-inputs": 0x00, "if-quiet": 0x02,
@@ -37,12 +40,16 @@ def _header_fields(image):
     return image[6], image[7], image[13]     # E, N, M
 
 
+def counts(batch):
+    """(events, supervisors, states) of the batch's image."""
+    parsed = __import__("swarmvm.runtime", fromlist=["python_vm"]).python_vm().Image.parse(batch.image)
+    return parsed.num_events, parsed.num_supervisors, len(parsed.state_defined)
+
+
 def limits(batch):
     """Compile-time limits fitted to the batch's image: -D flags for swarmvm.h."""
-    vm = __import__("swarmvm.runtime", fromlist=["python_vm"]).python_vm()
-    parsed = vm.Image.parse(batch.image)
-    return ["-DSVM_MAX_EVENTS=%d" % parsed.num_events, "-DSVM_MAX_SUPERVISORS=%d" % parsed.num_supervisors,
-            "-DSVM_MAX_STATES=%d" % len(parsed.state_defined)]
+    events, supervisors, states = counts(batch)
+    return ["-DSVM_MAX_EVENTS=%d" % events, "-DSVM_MAX_SUPERVISORS=%d" % supervisors, "-DSVM_MAX_STATES=%d" % states]
 
 
 def _c_rows(data, indent="    ", per_line=16):
@@ -93,7 +100,7 @@ def cases_header(batch, loaded=LOADED_FULL):
 
 
 def _write_header(batch, outdir, loaded=LOADED_FULL):
-    outdir = Path(outdir)
+    outdir = Path(outdir).absolute()
     outdir.mkdir(parents=True, exist_ok=True)
     (outdir / "svm_cases.h").write_text(cases_header(batch, loaded))
     return outdir
@@ -153,24 +160,52 @@ def fits_eeprom(batch):
     return len(batch.image) <= AVR_EEPROM - eeprom_image_at()
 
 
+class AvrRamError(Exception):
+    """The harness does not fit the ATmega328P's RAM even with everything in flash: a model
+    over the AVR harness's limit (its one-line message names the model and the limit)."""
+
+
+def _link_overflows_ram(result):
+    """Whether a failed avr-gcc run failed only because .data/.bss overflow the RAM region."""
+    return result.returncode != 0 and "region `data'" in result.stderr and not re.search(r"\.[ch]:\d+", result.stderr)
+
+
+def deepest_frame(outdir):
+    """The largest stack frame avr-gcc's -fstack-usage reported for the program built in
+    ``outdir`` (the step's, whose mask copies grow with SVM_MAX_EVENTS)."""
+    return max(int(line.split("\t")[1]) for su in Path(outdir).glob("*.su") for line in su.read_text().splitlines())
+
+
 def build_avr(batch, outdir, cycles=False, extra=(), loaded_modes=None, eeprom=False, root=None, flags=None):
     """An ATmega328P harness ELF built with the official Kilobot flags. The loaded pass is as
     complete as 2 KB of SRAM allows with room left for the stack (or the first of
-    ``loaded_modes`` that fits); with ``eeprom`` the image is also run from EEPROM (pass 2,
-    SVM_IMAGE_SOURCES = SVM_ANY_SOURCE). ``root``: another version's sources (``tree``);
-    ``flags``: compiler flags instead of KILOBOT_FLAGS. Returns (elf, loaded)."""
+    ``loaded_modes`` that fits): a mode fits when its static RAM, its deepest stack frame and
+    the reserve for the rest of the stack fit the 2 KB; one that does not (or does not even
+    link) falls back to the next, down to the image in flash only. With ``eeprom`` the image
+    is also run from EEPROM (pass 2, SVM_IMAGE_SOURCES = SVM_ANY_SOURCE). Returns (elf,
+    loaded); AvrRamError when no mode fits (a model too wide for the VM on the AVR: at 255
+    events the step alone needs 2 KB of stack), rather than a program that overruns its stack.
+    ``root``: another version's sources (``tree``); ``flags``: compiler flags instead of
+    KILOBOT_FLAGS."""
     defines = ["-DSVM_HARNESS_CYCLES"] if cycles else []
     if eeprom:
         defines += ["-DSVM_HARNESS_EEPROM", "-DSVM_IMAGE_SOURCES=SVM_ANY_SOURCE"]
     for loaded in loaded_modes or (LOADED_FULL, LOADED_DISPATCH, LOADED_NONE):
         out = _write_header(batch, outdir, loaded)
         elf = out / ("harness_%s.elf" % batch.name)
-        subprocess.run(["avr-gcc", *WARNINGS, *(flags or KILOBOT_FLAGS), *defines, *extra, *limits(batch),
-                        *_includes(out, root), *map(str, sources("platform_avr.c", root)), "-o", str(elf)],
-                       check=True, capture_output=True, text=True)
-        if avr_ram(elf) <= AVR_RAM - AVR_STACK_RESERVE:
+        result = subprocess.run(["avr-gcc", *WARNINGS, *(flags or KILOBOT_FLAGS), *defines, *extra, *limits(batch),
+                                 "-fstack-usage", *_includes(out, root), *map(str, sources("platform_avr.c", root)),
+                                 "-o", str(elf)],
+                                capture_output=True, text=True, cwd=out)
+        if _link_overflows_ram(result):
+            continue
+        if result.returncode != 0:
+            raise subprocess.CalledProcessError(result.returncode, result.args, result.stdout, result.stderr)
+        if avr_ram(elf) + deepest_frame(out) <= AVR_RAM - AVR_STACK_RESERVE:
             return elf, loaded
-    return elf, LOADED_NONE
+    raise AvrRamError("%s: %d events, %d supervisors, %d states: the VM does not fit the ATmega328P's %d bytes of "
+                      "RAM (static data even with the image in flash only, the step's stack frame and %d bytes for "
+                      "the rest of the stack)" % (batch.name, *counts(batch), AVR_RAM, AVR_STACK_RESERVE))
 
 
 ANSI = re.compile(r"\x1b\[[0-9;]*m")

@@ -6,13 +6,20 @@ reference trace. The loaded pass (image copied to RAM and swapped in) runs whene
 fits the 2 KB of SRAM: with runtime bindings, or with compile-time dispatch when the binding
 table does not fit as well (network_worker: its 1,693-byte image leaves no room for both). A
 third pass runs the image from EEPROM (svm_load_E) when it fits the 1 KB EEPROM (all but
-network_worker)."""
+network_worker). An image too large for a RAM copy runs from flash; a model too wide for the VM
+on the AVR at all is refused in one line, by the build helper and by `make emulate`."""
+
+import subprocess
+import sys
 
 import pytest
 
+from checkout import FIRMWARE
 from conformance import c_harness
 from conformance._c_compare import mismatches
-from conformance.cases import SUPERVISORS, batch
+from conformance.cases import SUPERVISORS, Batch, Run, batch, one_supervisor_yaml
+from conformance.test_widest_model import MODEL as WIDEST
+from swarmvm.pipeline import compile_inputs
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
@@ -46,3 +53,61 @@ def test_avr_kilobot_build_flags_trace_equals_reference(tmp_path):
                                  loaded_modes=(c_harness.LOADED_NONE,))
     traces, info = c_harness.parse(c_harness.run_avr(elf))
     assert mismatches(b, traces, info, passes=(0,)) == []
+
+
+def ring_yaml(states):
+    """One supervisor: a ring of ``states`` states under one controllable event ``go`` and an
+    uncontrollable self-loop ``tick``: an image of about 7 bytes a state."""
+    data = ",".join("2,EV_go,%d,%d,EV_tick,%d,%d" % (*divmod((s + 1) % states, 256), *divmod(s, 256))
+                    for s in range(states))
+    return one_supervisor_yaml(["go", "tick"], [1, 0], data)
+
+
+def test_an_image_over_the_ram_copy_runs_from_flash(tmp_path):
+    """An image the 2 KB of RAM cannot hold a copy of (here 3 KB) is run with its tables in
+    flash only, not refused: pass 0 only, every run the reference trace."""
+    model = tmp_path / "ring.yaml"
+    model.write_text(ring_yaml(400))
+    b = batch(str(model))
+    assert len(b.image) > 2048
+    elf, loaded = c_harness.build_avr(b, tmp_path / "build")
+    assert loaded == c_harness.LOADED_NONE
+    traces, info = c_harness.parse(c_harness.run_avr(elf))
+    assert mismatches(b, traces, info, passes=(0,)) == []
+
+
+def test_a_model_too_wide_for_the_avr_is_refused_naming_the_limit(tmp_path):
+    """At 255 events the step's stack frame alone is about 2 KB: the build helper says so in one
+    line instead of a link error or a program that overruns its stack."""
+    b = Batch("widest", "widest.yaml", compile_inputs([str(widest(tmp_path))]).image, ((frozenset(),),),
+              (Run("level", "after-inputs", "uniform", 1, 0),))
+    with pytest.raises(c_harness.AvrRamError) as refused:
+        c_harness.build_avr(b, tmp_path / "build")
+    assert str(refused.value).count("\n") == 0 and str(refused.value).startswith(
+        "widest: 255 events, 1 supervisors, 1 states: the VM does not fit the ATmega328P's 2048 bytes of RAM")
+
+
+def widest(tmp_path):
+    model = tmp_path / "widest.yaml"
+    model.write_text(WIDEST)
+    return model
+
+
+def emulate(model, tmp_path):
+    return subprocess.run([sys.executable, str(FIRMWARE / "emulate_example.py"), str(model), "--build",
+                           str(tmp_path / "emulate")], capture_output=True, text=True, timeout=600)
+
+
+def test_emulate_runs_a_corpus_supervisor_other_than_the_example(tmp_path):
+    result = emulate(next(p for p in SUPERVISORS if p.endswith("/network_worker.yaml")), tmp_path)
+    assert result.returncode == 0 and result.stderr == "", result.stdout + result.stderr
+    lines = result.stdout.splitlines()
+    assert len(lines) == 5 and all("identical to the Python VM" in line for line in lines[1:]), result.stdout
+
+
+def test_emulate_says_in_one_line_that_a_wide_model_does_not_fit_the_avr(tmp_path):
+    result = emulate(widest(tmp_path), tmp_path)
+    assert result.returncode == 0 and result.stderr == "", result.stdout + result.stderr
+    lines = result.stdout.splitlines()
+    assert len(lines) == 5 and "not run: widest: 255 events" in lines[1] and "2048 bytes of RAM" in lines[1]
+    assert all("identical to the Python VM" in line for line in lines[2:]), result.stdout

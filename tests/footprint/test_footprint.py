@@ -137,4 +137,17 @@ def test_an_elf_without_an_image_is_an_input_error(tmp_path):
     image = tmp_path / "empty.elf"
     subprocess.run(["avr-gcc", "-mmcu=atmega328p", "-Os", str(source), "-o", str(image)], check=True)
     result = swarmvm_footprint(image)
-    assert result.returncode == 2 and "no table image" in result.stderr
+    assert result.returncode == 2 and result.stderr == (
+        "swarmvm: error: %s: no table image (magic 'SVMI') found among its symbols\n" % image)
+
+
+@pytest.mark.parametrize("kind", ["missing", "folder", "not_elf", "truncated_elf"])
+def test_a_file_that_is_no_elf_is_one_line_naming_it(kind, tmp_path):
+    path = tmp_path / (kind + ".elf")
+    if kind == "folder":
+        path.mkdir()
+    elif kind != "missing":
+        path.write_bytes(b"int main;\n" if kind == "not_elf" else b"\x7fELF\x01")
+    result = swarmvm_footprint(path)
+    assert result.returncode == 2 and result.stderr.count("\n") == 1
+    assert result.stderr.startswith("swarmvm: error: %s: " % path)

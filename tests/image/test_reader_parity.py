@@ -341,3 +341,27 @@ def test_an_endless_file_is_refused_in_bounded_memory(readers):
     run = subprocess.run([str(cpp_exe), "--load=/dev/zero"], capture_output=True, text=True, timeout=60,
                          env={"ASAN_OPTIONS": "hard_rss_limit_mb=300"})
     assert (run.returncode, run.stdout.strip()) == (0, str(int(E.LENGTH))), run.stderr[-1000:]
+
+
+def test_the_command_line_refuses_every_bad_image_in_one_line_and_runs_every_good_one(tmp_path):
+    """`swarmvm check` accepts exactly what the C runtime accepts (the codes above), and `trace`
+    on a refused image is the same one line (it once failed with IndexError), never a
+    traceback; an accepted one is checked, and traced (or, without names, refused in one line:
+    a script names events)."""
+    from click.testing import CliRunner
+
+    from swarmvm.cli import main
+    script = tmp_path / "empty.script"
+    script.write_text("-\n")
+    for name, (raw, code) in all_cases().items():
+        image = tmp_path / (name + ".svm")
+        image.write_bytes(raw)
+        for command in (["check", str(image)], ["trace", str(image), "--script", str(script)]):
+            result = CliRunner().invoke(main, command)
+            if code == E.OK and (command[0] == "check" or "no_names" not in name):
+                assert result.exit_code == 0, (name, command, result.output)
+            elif code == E.OK:
+                assert result.exit_code == 2 and result.stderr.endswith("carries no event names; scripts name events\n")
+            else:
+                assert result.exit_code == 2 and result.stderr.count("\n") == 1, (name, command, result.output)
+                assert result.stderr.startswith("swarmvm: error: %s: " % image), (name, result.stderr)

@@ -43,6 +43,9 @@ CASES = {
                             "c: [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n",
                             "not valid YAML at line 2: aliases (*name) are not accepted"),
     "events_300.gen": (gen_with_events(300), "300 events, over the image format's limit of 255"),
+    "deep_nesting.xml": ('<model type="FSA"><data>' + "<x>" * 100000 + "</x>" * 100000 + "</data></model>\n",
+                         "state: the automaton has no states"),
+    "not_utf8.yaml": (b"num_events: 1\n\xff\n", "not UTF-8 text (byte 14)"),
     "superscript_id.xml": (re.sub(r'source="(\d+)"', 'source="²"', XML_PLANT, count=1),
                            "source: transition: expected a non-negative integer id of at most 9 digits, got '²'"),
 }
@@ -52,10 +55,27 @@ CASES = {
 def test_hostile_input_is_one_line(name, tmp_path):
     text, message = CASES[name]
     path = tmp_path / name
-    path.write_text(text)
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["gen", str(path), "--target", "c", "-o", str(out)])
     assert result.exit_code == 2, result.output
     assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: ") and name in result.stderr
     assert message in result.stderr
     assert not out.exists()
+
+
+def test_a_script_that_is_not_utf8_is_one_line(tmp_path):
+    script = tmp_path / "bad.script"
+    script.write_bytes(b"EV_lowEnergy\n\xff\xfe\n")
+    example = CORPUS / "openswarm" / "energy_worker.yaml"
+    result = CliRunner().invoke(main, ["trace", str(example), "--script", str(script)])
+    assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: not UTF-8 text (byte 13)\n" % script
+
+
+def test_a_script_that_is_a_folder_is_one_line(tmp_path):
+    example = CORPUS / "openswarm" / "energy_worker.yaml"
+    for command in (["trace", str(example), "--script", str(tmp_path)], ["synth", "--script", str(tmp_path), "-o",
+                                                                          str(tmp_path / "x.yaml"), str(example)]):
+        result = CliRunner().invoke(main, command)
+        assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: cannot read file (Is a directory)\n" % (
+            tmp_path), command

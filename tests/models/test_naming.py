@@ -70,3 +70,18 @@ def test_drifted_user_file_is_kept_and_named(tmp_path):
     again = subprocess.run(["swarmvm", "gen", str(corpus / "uav.yaml"), "--target", "python", "-o", str(out),
                             "--name", "m"], capture_output=True, text=True)
     assert "m_controller.py" not in again.stderr     # back in step with the model: no warning
+
+
+@pytest.mark.parametrize("target,stem,name", [("c", "svm", None), ("c", "worker", "svm_sct"), ("argos", "worker", "NULL"),
+                                              ("argos", "class", None), ("kilobot", "kilo_main", None)])
+def test_gen_refuses_a_reserved_model_name_before_writing(target, stem, name, tmp_path):
+    """A model name that would not compile on a target (a runtime's symbols, a C/C++ keyword or
+    macro) is one line at `gen`, nothing written: never generated code that does not build."""
+    from checkout import EXAMPLE
+    model = tmp_path / (stem + ".yaml")
+    model.write_text(EXAMPLE.read_text())
+    result = subprocess.run(["swarmvm", "gen", str(model), "--target", target, "-o", str(tmp_path / "out"),
+                             *(["--name", name] if name else [])], capture_output=True, text=True)
+    assert result.returncode == 2 and not (tmp_path / "out").exists()
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: %s: --name: model name %r"
+                                                                       % (model, name or stem))

@@ -213,3 +213,15 @@ def test_the_yaml_needs_no_pack_and_its_image_keeps_the_order(vm, tmp_path):
         vm.SCT(str(tmp_path / "bare.svm"))
     canonical = vm.SCT(str(tmp_path / "robot.svm"), exact=False)
     assert list(canonical.EV) == sorted(canonical.EV)       # events by name
+
+
+def test_the_exact_draw_is_randint_bit_for_bit(vm, monkeypatch):
+    """The exact step's draw takes the same numbers and leaves the same global random state as
+    ``random.randint(0, 1000000000)``, and defers to randint when randint is replaced."""
+    for seed in range(50):
+        random.seed(seed)
+        expected = [random.randint(0, 1000000000) for _ in range(200)], random.getstate()
+        random.seed(seed)
+        assert ([vm._published_draw() for _ in range(200)], random.getstate()) == expected
+    monkeypatch.setattr(random, "randint", lambda a, b: 7)
+    assert vm._published_draw() == 7

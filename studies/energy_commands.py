@@ -1,0 +1,117 @@
+"""``swarmvm sim|sweep|plot energy``: the energy-replenishment study in real ARGoS (its bounds
+are ``swarmvm bounds energy``, in cli.py). Registered on the study command groups of cli.py."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import click
+
+from .cli import need_studies_extra, plot, sim, sweep
+
+# Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
+RATE_OPTIONS = (
+    ("--capacity", "capacity", click.FloatRange(min=0, min_open=True), "Worker capacity c_w,max."),
+    ("--charger-capacity", "charger_capacity", click.FloatRange(min=0, min_open=True), "Mobile charger capacity c_m,max."),
+    ("--charge-rate", "charge_rate", click.FloatRange(min=0, min_open=True),
+     "Charging rate per second in the charging strip (and the transfer rate unless --transfer-rate)."),
+    ("--transfer-rate", "transfer_rate", click.FloatRange(min=0, min_open=True),
+     "What a mobile charger gives per second."),
+    ("--transfer-loss", "transfer_loss", click.FloatRange(0, 1, max_open=True), "Share of a transfer that is lost (1 - xi)."),
+    ("--move-rate", "move_rate", click.FloatRange(min=0), "Moving, per second."),
+    ("--work-rate", "work_rate", click.FloatRange(min=0), "Working, per second."),
+    ("--core-rate", "core_rate", click.FloatRange(min=0), "Core, per second."),
+    ("--duration", "duration_s", click.FloatRange(min=0, min_open=True), "Trial length, seconds."),
+)
+
+
+def rate_options(command):
+    """One option per RATE_OPTIONS entry; not given (None), it keeps Params' default, shown."""
+    from .energy_replenishment.params import Params
+    for flag, field, kind, text in reversed(RATE_OPTIONS):
+        shown = "the charge rate" if field == "transfer_rate" else "%g" % getattr(Params(), field)
+        command = click.option(flag, type=kind, default=None, show_default=shown, help=text)(command)
+    return command
+
+
+def params_from(values: dict, **fixed):
+    """Params from the options given (others keep Params' defaults); a bad combination is the
+    CLI's one-line error, exit 2."""
+    from .energy_replenishment.params import Params
+    changes = {field: values.pop(flag.lstrip("-").replace("-", "_")) for flag, field, _kind, _text in RATE_OPTIONS}
+    changes = {k: v for k, v in changes.items() if v is not None}
+    if "charge_rate" in changes and "transfer_rate" not in changes:
+        changes["transfer_rate"] = changes["charge_rate"]
+    try:
+        return Params(**changes, **fixed)
+    except ValueError as exc:
+        fail("%s" % exc)
+
+
+def fail(message: str, status: int = 2):
+    click.echo("swarmvm: error: energy: %s" % message, err=True)
+    sys.exit(status)
+
+
+@sim.command("energy")
+@click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
+              help="Workers recharge in the charging strip, or mobile chargers bring them energy.")
+@click.option("--workers", default=6, show_default=True, type=click.IntRange(1, 100), help="n_w.")
+@click.option("--chargers", default=4, show_default=True, type=click.IntRange(1, 100), help="n_m (mobile strategy).")
+@rate_options
+@click.option("--seed", default=1, show_default=True, type=click.IntRange(0, 2 ** 31 - 1), help="ARGoS random seed.")
+@click.option("--trace", type=click.Path(dir_okay=False), default=None, help="Write every robot's step as CSV here.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def sim_energy(strategy, workers, chargers, seed, trace, as_json, **values):
+    """Energy replenishment: one 600-s trial in real ARGoS (the study plugin is built once)."""
+    from .energy_replenishment import plugin, trial
+    params = params_from(values, strategy=strategy, workers=workers, chargers=chargers if strategy == "mobile" else 0,
+                         seed=seed)
+    try:
+        result = trial.run(params, trace=trace)
+    except (plugin.BuildError, trial.TrialError) as exc:
+        fail(str(exc), 1)
+    if as_json:
+        click.echo(json.dumps(result, sort_keys=True))
+        return
+    for key in ("work", "bound_work", "work_of_bound", "efficiency", "bound_efficiency", "depleted",
+                "depleted_chargers", "consumed", "lost", "seconds"):
+        value = result[key]
+        click.echo("%-18s %s" % (key, round(value, 4) if isinstance(value, float) else value))
+
+
+@sweep.command("energy")
+@click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
+@click.option("--figures", default="9,10,11,12", show_default=True, help="The seed's figures whose grids to run.")
+@click.option("--runs", default=50, show_default=True, type=click.IntRange(1), help="Trials (seeds) per configuration.")
+@click.option("--first-seed", default=1, show_default=True, type=click.IntRange(0), help="Seeds first..first+runs-1.")
+@click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local ARGoS processes at once.")
+@click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+@rate_options
+def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress, **values):
+    """Energy replenishment: the grids of Figures 9-12 in real ARGoS; finished trials are not rerun."""
+    need_studies_extra()
+    from .energy_replenishment import plugin, sweep as grid_sweep, trial
+    wanted = [f.strip() for f in figures.split(",") if f.strip()]
+    bad = [f for f in wanted if f not in grid_sweep.FIGURES]
+    if bad or not wanted:
+        fail("--figures: unknown figure %r (some of %s)" % (bad[0] if bad else figures, ", ".join(grid_sweep.FIGURES)))
+    specs = grid_sweep.grid(params_from(values), wanted, range(first_seed, first_seed + runs))
+    try:
+        ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
+    except (plugin.BuildError, trial.TrialError) as exc:
+        fail(str(exc), 1)
+    click.echo("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
+
+
+@plot.command("energy")
+@click.argument("results", type=click.Path(exists=True, file_okay=False))
+@click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
+def plot_energy(results, out):
+    """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results."""
+    need_studies_extra()
+    from .energy_replenishment import plots
+    for path in plots.draw_all(results, out):
+        click.echo(path)

@@ -1,0 +1,90 @@
+"""The .argos experiment file of one trial, written from its :class:`Params`: the walled
+1.6 m x 1.6 m arena, the workers (and mobile chargers) placed at random in the charging strip,
+their controllers from the study plugin and the loop functions that account for energy."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from .params import TICKS_PER_SECOND, Params
+
+RAB_RANGE_M = 0.533       # the seed's neighbourhood
+RAB_DATA_SIZE = 6         # the VM's message code (2 bytes) and the protocol's payload (energy_robot.h)
+WALL = 0.05
+# The seed's thresholds (high: a fraction of capacity; low: the return energy plus a margin) and
+# virtual-force motion.
+MOTION = dict(high="0.99", margin="10", alpha="1", beta="100", gamma="1", sigma="0.1", **{"lambda": "24"})
+CHARGING_STRIP = (-0.78, -0.52)   # where robots start: inside the strip (x from -0.8 to -0.5)
+
+
+def _fmt(value: float) -> str:
+    return "%.10g" % value
+
+
+def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float, baseline: bool) -> None:
+    element = ET.SubElement(parent, "energy_idle_controller" if baseline else kind + "_controller", id=kind,
+                            library=library)
+    actuators = ET.SubElement(element, "actuators")
+    ET.SubElement(actuators, "differential_steering", implementation="default")
+    ET.SubElement(actuators, "range_and_bearing", implementation="default")
+    sensors = ET.SubElement(element, "sensors")
+    ET.SubElement(sensors, "range_and_bearing", implementation="medium", medium="rab", show_rays="false")
+    ET.SubElement(sensors, "positioning", implementation="default")
+    ET.SubElement(sensors, "epuck_proximity", implementation="default", show_rays="false")
+    params = ET.SubElement(element, "params")
+    ET.SubElement(params, "options", inputs="level", control="after-inputs", policy="uniform")
+    ET.SubElement(params, "report", trace="false", summary="false")
+    ET.SubElement(params, "energy", dict(capacity=_fmt(capacity), move=_fmt(p.per_step(p.move_rate)),
+                                         core=_fmt(p.per_step(p.core_rate)), speed=_fmt(p.speed_cms),
+                                         noise=_fmt(p.steering_noise), **MOTION))
+
+
+def _robots(arena: ET.Element, prefix: str, kind: str, count: int) -> None:
+    distribute = ET.SubElement(arena, "distribute")
+    ET.SubElement(distribute, "position", method="uniform", min="%s, -0.75, 0" % CHARGING_STRIP[0],
+                  max="%s, 0.75, 0" % CHARGING_STRIP[1])
+    ET.SubElement(distribute, "orientation", method="uniform", min="0, 0, 0", max="360, 0, 0")
+    entity = ET.SubElement(distribute, "entity", quantity=str(count), max_trials="1000")
+    epuck = ET.SubElement(entity, "e-puck", id=prefix, rab_range=_fmt(RAB_RANGE_M), rab_data_size=str(RAB_DATA_SIZE))
+    ET.SubElement(epuck, "controller", config=kind)
+
+
+def experiment(p: Params, library: Path, result: Path, trace: Path | None = None, baseline: bool = False) -> str:
+    """The experiment file's text. ``library``: the study plugin (without its suffix, as ARGoS
+    takes it); ``result``: where the loop functions write the JSON result; ``trace``: an
+    optional per-step CSV; ``baseline``: every robot runs the empty controller (benchmarks)."""
+    root = ET.Element("argos-configuration")
+    framework = ET.SubElement(root, "framework")
+    ET.SubElement(framework, "system", threads="0")
+    ET.SubElement(framework, "experiment", length=_fmt(p.duration_s), ticks_per_second=str(TICKS_PER_SECOND),
+                  random_seed=str(p.seed))
+    controllers = ET.SubElement(root, "controllers")
+    worker = "energy_worker" if p.strategy == "fixed" else "energy_worker_mc"
+    _controller(controllers, worker, str(library), p, p.capacity, baseline)
+    if p.strategy == "mobile":
+        _controller(controllers, "energy_charger", str(library), p, p.charger_capacity, baseline)
+    loop = ET.SubElement(root, "loop_functions", library=str(library), label="energy_loop_functions")
+    ET.SubElement(loop, "energy", move=_fmt(p.per_step(p.move_rate)), work=_fmt(p.per_step(p.work_rate)),
+                  core=_fmt(p.per_step(p.core_rate)), charge=_fmt(p.per_step(p.charge_rate)),
+                  transfer=_fmt(p.per_step(p.transfer_rate)), loss=_fmt(p.transfer_loss))
+    ET.SubElement(loop, "output", path=str(result), trace=str(trace) if trace else "")
+    side = 1.6
+    arena = ET.SubElement(root, "arena", size="%s, %s, 1" % (_fmt(side + 2 * WALL), _fmt(side + 2 * WALL)),
+                          center="0, 0, 0.5")
+    for name, position, size in (("north", "0, %s, 0" % _fmt((side + WALL) / 2), "%s, %s, 0.1" % (_fmt(side + 2 * WALL), _fmt(WALL))),
+                                 ("south", "0, %s, 0" % _fmt(-(side + WALL) / 2), "%s, %s, 0.1" % (_fmt(side + 2 * WALL), _fmt(WALL))),
+                                 ("east", "%s, 0, 0" % _fmt((side + WALL) / 2), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side))),
+                                 ("west", "%s, 0, 0" % _fmt(-(side + WALL) / 2), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side)))):
+        box = ET.SubElement(arena, "box", id="wall_" + name, size=size, movable="false")
+        ET.SubElement(box, "body", position=position, orientation="0, 0, 0")
+    _robots(arena, "w", worker, p.workers)
+    if p.strategy == "mobile":
+        _robots(arena, "c", "energy_charger", p.chargers)
+    engines = ET.SubElement(root, "physics_engines")
+    ET.SubElement(engines, "dynamics2d", id="dyn2d")
+    media = ET.SubElement(root, "media")
+    ET.SubElement(media, "range_and_bearing", id="rab", check_occlusions="false")
+    ET.SubElement(root, "visualization")
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode") + "\n"

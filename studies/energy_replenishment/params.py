@@ -1,0 +1,74 @@
+"""One configuration of the energy-replenishment trial in ARGoS. Rates are per second, as in
+:mod:`.bounds` and ``swarmvm bounds energy`` (design/STUDIES.md's: capacity 100, charging 10,
+moving 1, working 1, core 0.05 per second); the simulation applies them per 0.1-s step."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from . import bounds
+
+STRATEGIES = ("fixed", "mobile")
+TICKS_PER_SECOND = 10
+
+
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Every knob of a trial; the seed included, so a trial is a pure function of its Params."""
+
+    strategy: str = "fixed"
+    workers: int = 6
+    chargers: int = 4                 # mobile strategy only
+    capacity: float = 100.0           # worker c_w,max
+    charger_capacity: float = 200.0   # c_m,max
+    charge_rate: float = 10.0         # per second, in the charging strip
+    transfer_rate: float = 10.0       # per second, what a charger gives
+    transfer_loss: float = 0.0        # 1 - xi
+    move_rate: float = 1.0
+    work_rate: float = 1.0
+    core_rate: float = 0.05
+    speed_cms: float = 12.0           # e-puck top speed
+    steering_noise: float = 0.05      # rad, standard deviation per step
+    duration_s: float = 600.0
+    seed: int = 1
+
+    def __post_init__(self) -> None:
+        checks = [(self.strategy in STRATEGIES, "strategy must be one of %s" % ", ".join(STRATEGIES)),
+                  (1 <= self.workers <= 100, "workers must be 1..100"),
+                  (0 <= self.chargers <= 100, "chargers must be 0..100"),
+                  (self.strategy == "fixed" or self.chargers >= 1, "the mobile strategy needs at least one charger"),
+                  (self.capacity > 0 and self.charger_capacity > 0, "capacities must be positive"),
+                  (self.charge_rate > 0 and self.transfer_rate > 0, "charge and transfer rates must be positive"),
+                  (0 <= self.transfer_loss < 1, "transfer loss must be in [0, 1)"),
+                  (min(self.move_rate, self.work_rate, self.core_rate) >= 0, "rates must not be negative"),
+                  (self.speed_cms > 0 and self.duration_s > 0, "speed and duration must be positive"),
+                  (self.steering_noise >= 0, "steering noise must not be negative"),
+                  (0 <= self.seed < 2 ** 31, "seed must be in [0, 2^31)")]
+        for ok, message in checks:
+            if not ok:
+                raise ValueError(message)
+
+    @property
+    def steps(self) -> int:
+        return round(self.duration_s * TICKS_PER_SECOND)
+
+    def per_step(self, rate: float) -> float:
+        return rate / TICKS_PER_SECOND
+
+    def rates(self) -> bounds.Rates:
+        """The same scenario for the bounds."""
+        return bounds.Rates(capacity=self.capacity, charge=self.charge_rate, move=self.move_rate,
+                            work=self.work_rate, core=self.core_rate, speed_ms=self.speed_cms / 100,
+                            workers=self.workers, duration_s=self.duration_s,
+                            work_per_second=TICKS_PER_SECOND)
+
+    def bound(self) -> bounds.Bound:
+        """What the trial is measured against: equations 1-3 for fixed chargers; for mobile
+        chargers the constant supply at the transfer strip (the seed's reference)."""
+        return bounds.fixed_bound(self.rates()) if self.strategy == "fixed" else bounds.constant_supply_bound(self.rates())
+
+    def replace(self, **changes) -> "Params":
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)

@@ -1,0 +1,137 @@
+"""The seed's Figures 9-12 from sweep results (:func:`sweep.load`), as deterministic PNGs, and
+the summary table behind docs/studies/energy-replenishment.md.
+
+Figure 9: heat maps over chargers n_m x capacity ratio phi (the fixed strategy in the 0 x 0
+cell) of (a) work, (b) total energy spent (consumed and lost), (c) efficiency, (d) depleted
+workers, each cell the mean over its trials. Figures 10-12: (a) work and (b) efficiency of both
+strategies against the workload ratio, the charging rate and the transfer loss: every trial as a
+dot, the mean as a diamond on the line, the standard deviation as a band."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List
+
+import numpy as np
+
+from ..plotting import pyplot, save
+from .params import Params
+from .sweep import load
+
+COLOURS = {"fixed": "#1b9e77", "mobile": "#7570b3"}
+DEFAULT = Params()
+
+
+def _spent(trials):
+    return trials["consumed"] + trials["lost"]
+
+
+def _at_default(trials, **except_these):
+    """Trials whose rates are the defaults, except the columns named."""
+    keep = np.ones(len(trials), dtype=bool)
+    for column in ("work_rate", "move_rate", "core_rate", "charge_rate", "transfer_rate", "transfer_loss", "capacity",
+                   "workers", "duration_s"):
+        if column not in except_these:
+            keep &= np.isclose(trials[column], getattr(DEFAULT, column))
+    return trials[keep]
+
+
+def figure9(plt, trials, path: Path) -> Path:
+    rows = _at_default(trials).copy()
+    rows["phi"] = np.where(rows["strategy"] == "fixed", 0.0, rows["charger_capacity"] / rows["capacity"])
+    rows["n_m"] = np.where(rows["strategy"] == "fixed", 0, rows["chargers"])
+    rows["spent"] = _spent(rows)
+    rows["efficiency_pct"] = 100 * rows["efficiency"]
+    panels = (("work", "(a) work (units)", "%.0f"), ("spent", "(b) total energy spent", "%.0f"),
+              ("efficiency_pct", "(c) energy efficiency (%)", "%.1f"), ("depleted", "(d) depleted workers", "%.2f"))
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7.5))
+    for axis, (column, title, fmt) in zip(axes.flat, panels):
+        table = rows.groupby(["phi", "n_m"])[column].mean().unstack("n_m")
+        image = axis.imshow(table.values, origin="lower", cmap="viridis", aspect="auto")
+        axis.set_xticks(range(len(table.columns)), [str(int(c)) for c in table.columns])
+        axis.set_yticks(range(len(table.index)), ["%g" % v for v in table.index])
+        axis.set_xlabel("mobile chargers n_m (0: fixed chargers)")
+        axis.set_ylabel("charger capacity / worker capacity")
+        axis.set_title(title)
+        for (i, j), value in np.ndenumerate(table.values):
+            if not np.isnan(value):
+                axis.text(j, i, fmt % value, ha="center", va="center", fontsize=6.5,
+                          color="white" if value < np.nanmean(table.values) else "black")
+        figure.colorbar(image, ax=axis)
+    return save(figure, path)
+
+
+def _lines(plt, rows, column: str, xlabel: str, title: str, path: Path, log_x: bool = False) -> Path:
+    figure, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    for axis, (measure, label) in zip(axes, (("work", "(a) work (units)"), ("efficiency", "(b) energy efficiency"))):
+        for strategy, group in rows.groupby("strategy"):
+            stats = group.groupby(column)[measure].agg(["mean", "std"])
+            x = stats.index.values
+            axis.plot(group[column], group[measure], ".", alpha=0.25, color=COLOURS[strategy], markersize=3)
+            axis.fill_between(x, stats["mean"] - stats["std"].fillna(0), stats["mean"] + stats["std"].fillna(0),
+                              color=COLOURS[strategy], alpha=0.15)
+            name = "fixed chargers" if strategy == "fixed" else "mobile chargers (6, 2x capacity)"
+            axis.plot(x, stats["mean"], "-D", color=COLOURS[strategy], label=name, markersize=4)
+        if log_x:
+            axis.set_xscale("log", base=2)
+        axis.set_xlabel(xlabel)
+        axis.set_title(label)
+        axis.grid(alpha=0.3)
+    if axes[0].get_legend_handles_labels()[0]:
+        axes[0].legend()
+    figure.suptitle(title)
+    return save(figure, path)
+
+
+def _figure_rows(trials, column: str):
+    """Fixed chargers and mobile chargers (6, twice the workers' capacity) varying `column`."""
+    rows = _at_default(trials, **{column: True, "transfer_rate": column == "charge_rate"})
+    mobile = (rows["strategy"] == "mobile") & (rows["chargers"] == 6) & np.isclose(rows["charger_capacity"],
+                                                                                  2 * rows["capacity"])
+    return rows[(rows["strategy"] == "fixed") | mobile].copy()
+
+
+def figure10(plt, trials, path: Path) -> Path:
+    rows = _figure_rows(trials, "work_rate")
+    rows["ratio"] = rows["work_rate"] / rows["move_rate"]
+    return _lines(plt, rows, "ratio", "workload ratio nu_work / nu_move", "Figure 10: workload", path, log_x=True)
+
+
+def figure11(plt, trials, path: Path) -> Path:
+    rows = _figure_rows(trials, "charge_rate")
+    rows = rows[np.isclose(rows["charge_rate"], rows["transfer_rate"])].copy()
+    rows["per_step"] = rows["charge_rate"] / 10
+    return _lines(plt, rows, "per_step", "charging = transfer rate (per 0.1-s step)", "Figure 11: charging rate", path)
+
+
+def figure12(plt, trials, path: Path) -> Path:
+    rows = _figure_rows(trials, "transfer_loss")
+    fixed = rows[rows["strategy"] == "fixed"]
+    losses = sorted(rows.loc[rows["strategy"] == "mobile", "transfer_loss"].unique())
+    import pandas as pd   # the fixed strategy has no transfers: its trials drawn at every loss
+    rows = pd.concat([rows[rows["strategy"] == "mobile"]] + [fixed.assign(transfer_loss=x) for x in losses])
+    return _lines(plt, rows, "transfer_loss", "transfer loss 1 - xi", "Figure 12: transfer loss", path)
+
+
+def summarise(trials):
+    """Means (and standard deviations) per configuration: the numbers of the reproduction page."""
+    columns = ["work", "work_of_bound", "efficiency", "bound_efficiency", "depleted", "seconds"]
+    keys = ["strategy", "chargers", "charger_capacity", "work_rate", "charge_rate", "transfer_loss"]
+    grouped = trials.groupby(keys)
+    table = grouped[columns].mean().join(grouped["work"].std().rename("work_std")).join(grouped.size().rename("runs"))
+    return table.reset_index()
+
+
+def draw_all(results, out) -> List[Path]:
+    plt = pyplot()
+    trials = load(results)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, draw in (("energy_fig9.png", figure9), ("energy_fig10.png", figure10), ("energy_fig11.png", figure11),
+                       ("energy_fig12.png", figure12)):
+        paths.append(draw(plt, trials, out / name))
+    summary = out / "energy_summary.csv"
+    summarise(trials).to_csv(summary, index=False, float_format="%.4f")
+    paths.append(summary)
+    return paths

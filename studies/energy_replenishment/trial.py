@@ -1,0 +1,48 @@
+"""One trial of the energy-replenishment study in real ARGoS: the experiment file written from
+the trial's :class:`Params`, ``argos3`` run headless on it, the loop functions' JSON result read
+back and measured against the bound."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+from . import plugin
+from .experiment import experiment
+from .params import Params
+
+
+class TrialError(RuntimeError):
+    """ARGoS failed on a trial; the message carries its error output."""
+
+
+def run(p: Params, library: Path | None = None, trace: Path | None = None, baseline: bool = False) -> dict:
+    """The trial's result: the loop functions' totals, the bound and the wall time. ``library``:
+    a plugin already built (:func:`plugin.build`); ``trace``: write the per-step CSV there;
+    ``baseline``: the same robots with an empty controller (benchmarks/energy_study.py)."""
+    library = library or plugin.build()
+    prefix = plugin.find_argos()
+    env = dict(os.environ, LD_LIBRARY_PATH=os.pathsep.join(filter(None, [str(prefix / "lib" / "argos3"),
+                                                                          os.environ.get("LD_LIBRARY_PATH")])),
+               ARGOS_PLUGIN_PATH=str(prefix / "lib" / "argos3"))
+    with tempfile.TemporaryDirectory(prefix="swarmvm-energy-") as folder:
+        result = Path(folder) / "result.json"
+        config = Path(folder) / "trial.argos"
+        config.write_text(experiment(p, library, result, trace, baseline))
+        start = time.perf_counter()
+        done = subprocess.run([str(prefix / "bin" / "argos3"), "-n", "-c", str(config), "-l", "/dev/null",
+                               "-e", str(Path(folder) / "err.txt")], cwd=folder, env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        seconds = time.perf_counter() - start
+        if done.returncode != 0 or not result.is_file():
+            errors = (Path(folder) / "err.txt").read_text() if (Path(folder) / "err.txt").is_file() else ""
+            raise TrialError("argos3 failed (status %d): %s" % (done.returncode, (errors + done.stderr).strip()[-2000:]))
+        totals = json.loads(result.read_text())
+    bound = p.bound()
+    totals.update(bound_work=bound.work, bound_efficiency=bound.efficiency, work_of_bound=totals["work"] / bound.work,
+                  seconds=seconds)
+    return totals

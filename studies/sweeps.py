@@ -1,0 +1,98 @@
+"""The sweep runner every study shares: a list of trial specifications run on local processes or
+on a Dask cluster, resumable, written as tidy Parquet tables.
+
+A study gives its specifications (any picklable value, each a pure function of its seed and
+parameters, so results do not depend on where or in which order trials run), a key per trial
+(a readable, unique file name), the module-level function that runs one trial and returns its
+rows for every table, and its table names. Each finished trial is written as one Parquet file
+per table under ``OUT/<table>/<key>.parquet``, the ``trials`` table last: its presence marks the
+trial done, and a rerun skips done trials."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+
+if TYPE_CHECKING:
+    import pandas
+
+Tables = Dict[str, list]
+
+
+def digest(values: dict) -> str:
+    """A short digest of a trial's parameters: keys stay unique however the label reads."""
+    return hashlib.sha1(json.dumps(values, sort_keys=True).encode()).hexdigest()[:10]
+
+
+def write_trial(out: Path, key: str, tables: Tables, names: Sequence[str]) -> None:
+    """One Parquet file per table, in ``names``' order (``trials`` last), each renamed into place."""
+    import pandas as pd
+    for table in names:
+        folder = out / table
+        folder.mkdir(parents=True, exist_ok=True)
+        temp = folder / (".%s.tmp" % key)
+        pd.DataFrame(tables[table]).to_parquet(temp, index=False)
+        os.replace(temp, folder / ("%s.parquet" % key))
+
+
+def done_keys(out: Path) -> set:
+    folder = out / "trials"
+    return {p.stem for p in folder.glob("*.parquet")} if folder.exists() else set()
+
+
+def run(specs: Sequence[Any], key: Callable[[Any], str], run_trial: Callable[[Any], Tables], out, names: Sequence[str],
+        workers: int = 1, scheduler: Optional[Any] = None, progress: bool = True) -> int:
+    """Runs the trials of ``specs`` not yet in ``out``; returns how many ran. ``scheduler``: a
+    Dask scheduler address (``tcp://host:8786``) or a ``distributed.Client``; otherwise
+    ``workers`` local processes (1: in this process). Duplicate specifications run once."""
+    from tqdm import tqdm
+    out = Path(out)
+    done = done_keys(out)
+    todo = list({key(s): s for s in specs if key(s) not in done}.items())
+    bar = tqdm(total=len(todo), disable=not progress, unit="trial")
+    for name, tables in _results(todo, run_trial, workers, scheduler):
+        write_trial(out, name, tables, names)
+        bar.update(1)
+    bar.close()
+    return len(todo)
+
+
+def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, scheduler) -> Iterator[Tuple[str, Tables]]:
+    """(key, tables) as trials finish."""
+    if not todo:
+        return
+    if scheduler is not None:
+        from distributed import Client, as_completed as dask_completed
+        client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+        try:
+            futures = client.map(run_trial, [s for _, s in todo], key=[k for k, _ in todo])
+            for future in dask_completed(futures):
+                yield future.key, future.result()
+        finally:
+            if client is not scheduler:
+                client.close()
+    elif workers <= 1:
+        for name, spec in todo:
+            yield name, run_trial(spec)
+    else:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            pending = {pool.submit(run_trial, spec): name for name, spec in todo}
+            for future in as_completed(pending):
+                yield pending[future], future.result()
+
+
+def load(out, names: Sequence[str], index: Sequence[str] = ("key",)) -> Dict[str, "pandas.DataFrame"]:
+    """Every table of a sweep, sorted by the ``index`` columns it has (trial key first)."""
+    import pandas as pd
+    out = Path(out)
+    frames = {}
+    for table in names:
+        files = sorted((out / table).glob("*.parquet"))
+        frame = pd.concat([pd.read_parquet(f) for f in files], ignore_index=True) if files else pd.DataFrame()
+        columns = [c for c in index if c in frame.columns]
+        frames[table] = frame.sort_values(columns).reset_index(drop=True) if columns else frame
+    return frames

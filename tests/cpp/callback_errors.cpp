@@ -1,0 +1,114 @@
+// C++ callbacks that throw (docs/semantics.md, "Callbacks that raise"): swarmvm::CallbackError
+// names the event and the kind of callback, the original nested in it; a throwing check leaves
+// the VM as it was before the step, a throwing action keeps its own transition; the next step
+// runs normally. Usage: callback_errors IMAGE.svm; one line per finding, checked by
+// tests/cpp/test_callback_errors_cpp.py.
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "swarmvm.hpp"
+
+using swarmvm::CallbackError;
+using swarmvm::VM;
+
+namespace {
+
+// What nested in a CallbackError: its message, or "?" when it is not a std::exception.
+std::string nested_cause(const CallbackError& error) {
+    try {
+        std::rethrow_if_nested(error);
+    } catch (const std::exception& cause) {
+        return cause.what();
+    } catch (...) {
+        return "?";
+    }
+    return "(none)";
+}
+
+void report(const char* test, const CallbackError& error) {
+    std::printf("%s event=%s kind=%s what=%s cause=%s\n", test, error.event().c_str(), error.kind().c_str(),
+                error.what(), nested_cause(error).c_str());
+}
+
+bool same_vm(VM& a, VM& b) {
+    swarmvm::XorShift32 ra = a.rng(), rb = b.rng();
+    return a.states() == b.states() && a.violations() == b.violations() && ra.next() == rb.next();
+}
+
+// A check that throws: the step is abandoned before any transition; afterwards the VM steps
+// as one that never saw the failure.
+void throwing_check(const swarmvm::Image& image) {
+    VM vm(image, swarmvm::Options()), reference(image, swarmvm::Options());
+    bool broken = true;
+    vm.set_check("EV_lowEnergy", [&broken](void*) -> bool {
+        if (broken) throw std::runtime_error("sensor unplugged");
+        return true;
+    });
+    reference.set_check("EV_lowEnergy", [](void*) { return true; });
+    for (VM* m : {&vm, &reference}) m->set_check("EV_atCharger", [](void*) { return true; });
+    try {
+        vm.step();
+        std::printf("check no-throw\n");
+    } catch (const CallbackError& error) {
+        report("check", error);
+    }
+    std::printf("check unchanged=%d\n", same_vm(vm, reference) ? 1 : 0);
+    broken = false;
+    const std::vector<unsigned> got = vm.step(), want = reference.step();
+    std::printf("check next-step-same=%d\n", got == want && same_vm(vm, reference) ? 1 : 0);
+}
+
+// An action that throws: its own transition stays, the step ends there. Both VMs see the same
+// inputs (each its own generator, drawn in the same order) until the reference fires a
+// controllable event; in that step the VM's action throws.
+void throwing_action(const swarmvm::Image& image, bool standard) {
+    VM vm(image, swarmvm::Options()), reference(image, swarmvm::Options());
+    std::uint32_t inputs[2] = {12345u, 12345u};
+    for (unsigned k = 0; k < 2; ++k) {
+        VM& m = k == 0 ? vm : reference;
+        std::uint32_t* state = &inputs[k];
+        for (unsigned e = 0; e < image.num_events; ++e) {
+            if (!image.controllable.test(e)) {
+                m.set_check(e, [state](void*) { return ((*state = *state * 1103515245u + 12345u) >> 24) < 77u; });
+            } else if (k == 0) {
+                m.set_action(e, [standard](void*) {
+                    if (standard) throw std::runtime_error("motor stalled");
+                    throw 42;
+                });
+            }
+        }
+    }
+    for (unsigned step = 0; step < 20; ++step) {
+        const std::vector<unsigned> fired = reference.step();
+        if (!fired.empty() && image.controllable.test(fired.back())) {
+            try {
+                vm.step();
+                std::printf("action no-throw\n");
+            } catch (const CallbackError& error) {
+                report(standard ? "action" : "other", error);
+                std::printf("%s fired=%s kept-transition=%d\n", standard ? "action" : "other",
+                            image.event_name(fired.back()).c_str(), same_vm(vm, reference) ? 1 : 0);
+            }
+            return;
+        }
+        if (vm.step() != fired) break;
+    }
+    std::printf("action no-controllable-event\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: callback_errors IMAGE.svm\n");
+        return 2;
+    }
+    const swarmvm::Image image = swarmvm::Image::load(argv[1]);
+    throwing_check(image);
+    throwing_action(image, true);
+    throwing_action(image, false);
+    return 0;
+}

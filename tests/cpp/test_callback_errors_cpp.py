@@ -1,0 +1,35 @@
+"""A C++ callback that throws (docs/semantics.md, "Callbacks that raise"), as a Python one that
+raises: swarmvm::CallbackError names the event and the kind of callback and nests the original
+(std::exception or not); a throwing check leaves the VM as it was before the step and the next
+step runs as if it had never failed; a throwing action keeps its own transition."""
+
+import subprocess
+from pathlib import Path
+
+from checkout import EXAMPLE
+from conformance.cpp_harness import FLAGS
+from swarmvm.pipeline import compile_inputs
+from swarmvm.runtime import RUNTIME_CPP
+
+PROGRAM = Path(__file__).resolve().parent / "callback_errors.cpp"
+
+
+def test_throwing_callbacks_follow_the_python_policy(tmp_path):
+    image, exe = tmp_path / "energy_worker.svm", tmp_path / "callback_errors"
+    image.write_bytes(compile_inputs([str(EXAMPLE)]).image)
+    subprocess.run(["g++", *FLAGS, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
+                   capture_output=True)
+    lines = subprocess.run([str(exe), str(image)], check=True, capture_output=True, text=True,
+                           timeout=30).stdout.splitlines()
+    assert lines == [
+        "check event=EV_lowEnergy kind=check what=the check of EV_lowEnergy threw: sensor unplugged "
+        "cause=sensor unplugged",
+        "check unchanged=1",
+        "check next-step-same=1",
+        "action event=EV_moveToWork kind=action what=the action of EV_moveToWork threw: motor stalled "
+        "cause=motor stalled",
+        "action fired=EV_moveToWork kept-transition=1",
+        "other event=EV_moveToWork kind=action what=the action of EV_moveToWork threw: an exception that is not "
+        "a std::exception cause=?",
+        "other fired=EV_moveToWork kept-transition=1",
+    ]
