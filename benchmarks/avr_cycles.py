@@ -1,8 +1,13 @@
-"""Cost of one VM step on the ATmega328P (simavr, 8 MHz) for every corpus supervisor.
+"""Cost of one VM step on the ATmega328P (simavr, 8 MHz) for every corpus supervisor, and the
+VM core's flash and RAM, for the current VM and the baseline (benchmarks/baseline.py) side by
+side in one run.
 
-The conformance harness (firmware/harness/) is built as a Kilobot image would be: official
-flags, the model's exact limits, the image in flash with SVM_IMAGE_SOURCES = SVM_FLASH_ONLY and
-SVM_MASK_EXACT = 1.
+The conformance harness (firmware/harness/) is built as a Kilobot image would be: kilolib's
+flags (-O3), the model's exact limits, the image in flash with SVM_IMAGE_SOURCES =
+SVM_FLASH_ONLY and SVM_MASK_EXACT = 1; the current VM also with the generated Kilobot
+Makefile's features (no runtime binding table, no learned policy; the first and weighted
+policies stay, the benchmark runs them). The baseline is built from its own sources (runtime
+and harness) with the same flags and batch.
 Timer1 at prescaler 1 counts the CPU cycles of each ``svm_step`` (calibrated so that an empty
 measurement reads 0); simavr models the AVR's cycle timing, so these are cycles. The figures
 include the harness's checks and actions, called through compile-time dispatch as a generated
@@ -11,12 +16,17 @@ application's are.
 Each supervisor runs one random script of STEPS steps (density 0.25) under every option
 combination (inputs x control x policy); the table gives the mean and the worst step over all
 of them, the mean for the default options and for the published Kilobot VM's behaviour (edge,
-if-quiet), the VM's static RAM (sizeof svm_vm_t, from the symbol table), the VM core's flash
-and the table image's size. Every trace is also compared with the Python reference, so a
-figure is never that of a wrong run. Same scripts as benchmarks/m4_cycles.py."""
+if-quiet). Every trace of both VMs is compared with the Python reference, so a figure is never
+that of a wrong run. Same scripts as benchmarks/m4_cycles.py.
+
+The core's flash and RAM come from benchmarks/avr_core.c (the image loaded from flash and
+stepped through a dispatch, nothing else) linked and measured by ``swarmvm footprint``: the
+current VM as the generated Kilobot Makefile builds it (its features, -ffunction-sections and
+--gc-sections), at kilolib's -O3 and at -Os; the baseline as its Makefile built it (-O3)."""
 
 import argparse
 import json
+import math
 import re
 import statistics
 import subprocess
@@ -24,12 +34,24 @@ import tempfile
 from pathlib import Path
 
 from step_costs import DEFAULT, STEPS, benchmark_batch, checked_costs, mean_of
+from baseline import BASELINE, baseline_tree
 from conformance import c_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS
-from swarmvm.runtime import RUNTIME_C
+from swarmvm.footprint import measure as footprint
 
 KILOBOT_VM = ("edge", "if-quiet", "uniform")
 FLASH_ONLY = ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"]    # as the Kilobot Makefile
+# The generated Kilobot Makefile's features (templates/kilobot/Makefile.j2), with the policies the
+# benchmark runs; the harness's trace reads the names.
+HARNESS_FEATURES = ["-DSVM_WITH_BINDINGS=0", "-DSVM_WITH_LEARNED=0"]
+KILOBOT_FEATURES = ["-DSVM_WITH_BINDINGS=0", "-DSVM_WITH_NAMES=0", "-DSVM_WITH_FIRST=0", "-DSVM_WITH_LEARNED=0"]
+GC = ["-ffunction-sections", "-Wl,--gc-sections"]
+CORE_PROGRAM = Path(__file__).resolve().parent / "avr_core.c"
+
+
+def with_opt(opt):
+    """kilolib's flags with another optimisation level."""
+    return [opt if f.startswith("-O") else f for f in c_harness.KILOBOT_FLAGS]
 
 
 def symbol_size(elf, name):
@@ -38,21 +60,34 @@ def symbol_size(elf, name):
     return int(match.group(1), 16) if match else None
 
 
-def core_flash(batch, workdir):
-    """Flash of runtime_c/swarmvm.c alone, built as in a Kilobot image (text + data)."""
-    obj = Path(workdir) / ("%s_core.o" % batch.name)
-    subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *FLASH_ONLY, *c_harness.limits(batch), "-c",
-                    str(RUNTIME_C / "swarmvm.c"), "-o", str(obj)], check=True)
-    out = subprocess.run(["avr-size", str(obj)], capture_output=True, text=True, check=True).stdout
-    text, data = out.splitlines()[1].split()[:2]
-    return int(text) + int(data)
+def core(batch, workdir, root, flags, extra):
+    """(core flash, the VM's static RAM) of avr_core.c for the batch, built from ``root``'s
+    runtime: the flash of runtime_c/*.c as `swarmvm footprint` counts it, sizeof svm_vm_t."""
+    runtime, _ = c_harness.tree(root)
+    out = c_harness._write_header(batch, Path(workdir))
+    elf = out / "core.elf"
+    weighted = ["-DSVM_WITH_WEIGHTED=%d" % (batch.image[5] & 0x02 != 0)] if root is None else []
+    subprocess.run(["avr-gcc", *c_harness.WARNINGS, *flags, *FLASH_ONLY, *extra, *weighted, *c_harness.limits(batch),
+                    "-I", str(out), "-I", str(runtime), str(CORE_PROGRAM), str(runtime / "swarmvm.c"), "-o", str(elf)],
+                   check=True, capture_output=True, text=True)
+    return footprint(elf, batch.name, "kilobot", runtime=runtime).flash.core, symbol_size(elf, "vm")
 
 
-def measure(batch, workdir):
-    """{run index: [cycles per step]}, checked against the reference, and the VM's RAM."""
-    elf, _ = c_harness.build_avr(batch, Path(workdir) / batch.name, cycles=True, extra=FLASH_ONLY,
-                                 loaded_modes=(c_harness.LOADED_NONE,))
-    return checked_costs(batch, c_harness.run_avr(elf)), symbol_size(elf, "vm")
+def cycles(batch, workdir, root, extra):
+    """{run index: [cycles per step]} of the harness built from ``root``, checked."""
+    elf, _ = c_harness.build_avr(batch, Path(workdir), cycles=True, extra=FLASH_ONLY + extra,
+                                 loaded_modes=(c_harness.LOADED_NONE,), root=root)
+    return checked_costs(batch, c_harness.run_avr(elf))
+
+
+def summary(batch, counts):
+    every = [c for steps in counts.values() for c in steps]
+    return dict(mean=statistics.mean(every), worst=max(every), default=mean_of(batch, counts, DEFAULT),
+                kilobot=mean_of(batch, counts, KILOBOT_VM))
+
+
+def geomean(values):
+    return math.exp(sum(math.log(v) for v in values) / len(values))
 
 
 def main():
@@ -61,26 +96,44 @@ def main():
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as workdir:
+        base = baseline_tree(Path(workdir))
         for path in SUPERVISORS:
             batch = benchmark_batch(path)
-            counts, ram = measure(batch, workdir)
-            every = [c for steps in counts.values() for c in steps]
-            rows.append(dict(name=batch.name, mean=statistics.mean(every), worst=max(every),
-                             default=mean_of(batch, counts, DEFAULT), kilobot=mean_of(batch, counts, KILOBOT_VM),
-                             vm_ram=ram, core_flash=core_flash(batch, workdir), image=len(batch.image),
-                             events=batch.image[6], supervisors=batch.image[7]))
-    print("Cycles per VM step on the ATmega328P (simavr, 8 MHz, Timer1); %d steps x %d option combinations"
-          % (STEPS, len(OPTIONS)))
-    print("| supervisor | E | N | mean | worst | mean default | mean edge+if-quiet | us/step (mean) "
-          "| VM RAM B | core flash B | image B |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+            w = Path(workdir) / batch.name
+            # Interleaved: the baseline and the current VM of one supervisor, then the next.
+            before = summary(batch, cycles(batch, w / "base", base, []))
+            after = summary(batch, cycles(batch, w / "cur", None, HARNESS_FEATURES))
+            flash_before, ram_before = core(batch, w / "core-base", base, c_harness.KILOBOT_FLAGS, [])
+            flash_o3, ram_after = core(batch, w / "core-O3", None, c_harness.KILOBOT_FLAGS + GC, KILOBOT_FEATURES)
+            flash_os, _ = core(batch, w / "core-Os", None, with_opt("-Os") + GC, KILOBOT_FEATURES)
+            rows.append(dict(name=batch.name, events=batch.image[6], supervisors=batch.image[7], image=len(batch.image),
+                             baseline=before, current=after, ratio=before["mean"] / after["mean"],
+                             core_flash=dict(baseline=flash_before, current_O3=flash_o3, current_Os=flash_os),
+                             vm_ram=dict(baseline=ram_before, current=ram_after)))
+    print("Cycles per VM step on the ATmega328P (simavr, 8 MHz, Timer1), current VM vs baseline %s; %d steps x %d "
+          "option combinations; ratio = baseline / current (above 1: the current VM is faster)" %
+          (BASELINE, STEPS, len(OPTIONS)))
+    print("| supervisor | E | N | baseline mean | current mean | ratio | current worst | current default "
+          "| current edge+if-quiet | core flash B baseline -> -O3 / -Os | VM RAM B | image B |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %s | %d | %d | %.0f | %d | %.0f | %.0f | %.0f | %s | %d | %d |"
-              % (r["name"], r["events"], r["supervisors"], r["mean"], r["worst"], r["default"], r["kilobot"],
-                 r["mean"] / 8.0, r["vm_ram"], r["core_flash"], r["image"]))
+        b, c, f, ram = r["baseline"], r["current"], r["core_flash"], r["vm_ram"]
+        print("| %s | %d | %d | %.0f | %.0f | %.2f | %d | %.0f | %.0f | %d -> %d / %d | %d -> %d | %d |"
+              % (r["name"], r["events"], r["supervisors"], b["mean"], c["mean"], r["ratio"], c["worst"], c["default"],
+                 c["kilobot"], f["baseline"], f["current_O3"], f["current_Os"], ram["baseline"], ram["current"],
+                 r["image"]))
+    ratios = [r["ratio"] for r in rows]
+    print("AVR summary: cycles per step %.2fx the baseline's speed (geometric mean; %.2f-%.2f); core flash %d-%d B "
+          "at -O3, %d-%d B at -Os (baseline %d-%d B); VM RAM %d-%d B"
+          % (geomean(ratios), min(ratios), max(ratios),
+             min(r["core_flash"]["current_O3"] for r in rows), max(r["core_flash"]["current_O3"] for r in rows),
+             min(r["core_flash"]["current_Os"] for r in rows), max(r["core_flash"]["current_Os"] for r in rows),
+             min(r["core_flash"]["baseline"] for r in rows), max(r["core_flash"]["baseline"] for r in rows),
+             min(r["vm_ram"]["current"] for r in rows), max(r["vm_ram"]["current"] for r in rows)))
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(rows, indent=1, sort_keys=True) + "\n")
+        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=STEPS, rows=rows), indent=1,
+                                              sort_keys=True) + "\n")
 
 
 if __name__ == "__main__":

@@ -32,3 +32,15 @@ def baseline_python_vm(scratch: Path) -> ModuleType:
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def baseline_tree(scratch: Path, folders=("runtime_c", "runtime_cpp", "firmware/harness", "firmware/capbot")) -> Path:
+    """The baseline's ``folders`` (every file in them at BASELINE) under one root in
+    ``scratch``, laid out as in a checkout: build it side by side with the current sources."""
+    listing = subprocess.run(["git", "-C", str(ROOT), "ls-tree", "-r", "--name-only", BASELINE, "--", *folders],
+                             capture_output=True, text=True)
+    if listing.returncode != 0 or not listing.stdout.strip():
+        sys.exit("bench: the baseline needs this checkout's git history (commit %s)" % BASELINE)
+    for path in listing.stdout.split():
+        baseline_file(path, scratch)
+    return scratch / ("baseline-" + BASELINE)

@@ -1,4 +1,5 @@
-"""Cost of one VM step on the Cortex-M4F (QEMU mps2-an386) for every corpus supervisor.
+"""Cost of one VM step on the Cortex-M4F (QEMU mps2-an386) for every corpus supervisor, for the
+current VM and the baseline (benchmarks/baseline.py) side by side in one run.
 
 QEMU does not model the Cortex-M4's pipeline timing, so this counts *instructions*, not
 cycles: QEMU runs with ``-icount shift=10`` (each instruction advances the virtual clock by
@@ -10,22 +11,35 @@ dispatch of checks and actions, as a real application's callbacks would be.
 
 Each supervisor runs one random script of STEPS steps (density 0.25) under every option
 combination (inputs x control x policy) with the image in flash; the table gives the mean and
-the worst step over all of them, and the mean for the default options alone. Every trace is
-also compared with the Python reference, so a figure is never that of a wrong run."""
+the worst step over all of them, and the mean for the default options alone, for both VMs,
+each built from its own runtime and harness with the same flags (firmware/capbot/m4.flags),
+the current one with the generated CapBot application's features (FEATURES).
+Every trace is also compared with the Python reference, so a figure is never that of a wrong
+run."""
 
 import argparse
 import json
 import tempfile
 from pathlib import Path
 
+import math
+
 from step_costs import DEFAULT, DENSITY, SEED, STEPS, benchmark_batch, checked_costs, mean_of
-from conformance import qemu_harness  # step_costs put tests/ on the path
+from baseline import BASELINE, baseline_tree
+from conformance import c_harness, qemu_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS
 
 
-def measure(batch, workdir):
-    """{run index: [instructions per step]} for the flash pass, checked against the reference."""
-    elf = qemu_harness.build_qemu(batch, Path(workdir) / batch.name, cycles=True)
+# The generated CapBot application's features (templates/capbot/CMakeLists.txt.j2) with the
+# policies the benchmark runs; the baseline had none to choose.
+FEATURES = ["-DSVM_WITH_BINDINGS=0", "-DSVM_WITH_LEARNED=0"]
+
+
+def measure(batch, workdir, root=None):
+    """{run index: [instructions per step]} for the flash pass, checked against the reference;
+    ``root``: another version's runtime and harness (the baseline's)."""
+    elf = qemu_harness.build_qemu(batch, Path(workdir), cycles=True, root=root, extra=FEATURES if root is None else (),
+                                  loaded=c_harness.LOADED_DISPATCH)    # no binding table (FEATURES)
     status, output = qemu_harness.run_qemu(elf, icount=True)
     if status != 0:
         raise SystemExit("%s: harness failed in QEMU (exit status %d)" % (batch.name, status))
@@ -38,22 +52,33 @@ def main():
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as workdir:
+        base = baseline_tree(Path(workdir))
         for path in SUPERVISORS:
             batch = benchmark_batch(path)
-            counts = measure(batch, workdir)
-            every = [n for run in counts.values() for n in run]
-            rows.append(dict(supervisor=batch.name, steps=len(every), mean=sum(every) / len(every),
-                             worst=max(every), mean_default=mean_of(batch, counts, DEFAULT)))
-    print("Instructions per VM step on the Cortex-M4F (QEMU -icount; %d-step random script, "
-          "%d option combinations, image in flash)\n" % (STEPS, len(OPTIONS)))
-    print("| supervisor | steps | mean | worst | mean, default options |")
-    print("|---|---|---|---|---|")
+            row = dict(supervisor=batch.name)
+            for name, root in (("baseline", base), ("current", None)):    # interleaved per supervisor
+                counts = measure(batch, Path(workdir) / batch.name / name, root)
+                every = [n for run in counts.values() for n in run]
+                row[name] = dict(steps=len(every), mean=sum(every) / len(every), worst=max(every),
+                                 mean_default=mean_of(batch, counts, DEFAULT))
+            row["ratio"] = row["baseline"]["mean"] / row["current"]["mean"]
+            rows.append(row)
+    print("Instructions per VM step on the Cortex-M4F (QEMU -icount; %d-step random script, %d option combinations, "
+          "image in flash), current VM vs the VM of %s; ratio = baseline / current (above 1: fewer now)\n"
+          % (STEPS, len(OPTIONS), BASELINE))
+    print("| supervisor | baseline mean | current mean | ratio | current worst | current mean, default options |")
+    print("|---|---|---|---|---|---|")
     for r in rows:
-        print("| %s | %d | %.0f | %d | %.0f |" % (r["supervisor"], r["steps"], r["mean"], r["worst"], r["mean_default"]))
+        b, c = r["baseline"], r["current"]
+        print("| %s | %.0f | %.0f | %.2f | %d | %.0f |" % (r["supervisor"], b["mean"], c["mean"], r["ratio"], c["worst"],
+                                                          c["mean_default"]))
+    ratios = [r["ratio"] for r in rows]
+    print("M4 summary: %.2fx fewer instructions per step than the baseline (geometric mean; %.2f-%.2f)"
+          % (math.exp(sum(math.log(x) for x in ratios) / len(ratios)), min(ratios), max(ratios)))
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(unit="instructions (QEMU -icount shift=10)", steps=STEPS,
-                                                   seed=SEED, density=DENSITY, rows=rows), indent=2) + "\n")
+        Path(args.json).write_text(json.dumps(dict(unit="instructions (QEMU -icount shift=10)", baseline=BASELINE,
+                                                   steps=STEPS, seed=SEED, density=DENSITY, rows=rows), indent=2) + "\n")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 # CapBot (Cortex-M4F): generated Zephyr applications, built bare-metal for QEMU mps2-an386.
 #   make firmware   also builds $(BUILD)/capbot/energy_worker.elf and .bin (the bundled example)
 #   make emulate    runs that image in QEMU and shows its trace (mk/emulate.mk)
-#   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU)
+#   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU, current
+#                   VM against the baseline, in one run)
 # The control-logic flash page (firmware/capbot/swarmvm_logic_page.h, 4 KB at CAPBOT_LOGIC_PAGE):
 #   $(BUILD)/capbot/<name>-logic.hex   a model's image at the page address, Intel HEX, for
 #                                      nrfjprog --program / west flash --hex-file on the robot
@@ -47,14 +48,14 @@ $(BUILD)/capbot/logic-vm.elf: $(BUILD)/capbot/gen/energy_worker/CMakeLists.txt $
 	  $(CAPBOT_FW_SOURCES) $(filter-out %/main.c,$(wildcard $(<D)/src/*.c)) -o $@
 
 # $(call capbot_rules,NAME,MODEL FILE): generate the application, link its bare-metal image.
-# The model's limit flags are the ones the generator wrote into its CMakeLists.txt.
+# The model's limit and feature flags are the ones the generator wrote into its CMakeLists.txt.
 define capbot_rules
 $(BUILD)/capbot/gen/$1/CMakeLists.txt: $2 $(CAPBOT_GEN_DEPS)
 	$(SWARMVM) gen $2 --target capbot -o $(BUILD)/capbot/gen/$1 --name $1 >/dev/null
 
 $(BUILD)/capbot/$1.elf: $(BUILD)/capbot/gen/$1/CMakeLists.txt $(CAPBOT_FW_DEPS)
 	$(CAPBOT_CC) @$(CAPBOT_FW)/m4.flags \
-	  $$$$(grep -o -- '-DSVM_MAX_[A-Z_]*=[0-9]*' $$<) -DSVM_APP=$1 '-DSVM_APP_HEADER="$1_tables.h"' \
+	  $$$$(grep -o -- '-DSVM_\(MAX\|WITH\)_[A-Z_]*=[0-9]*' $$<) -DSVM_APP=$1 '-DSVM_APP_HEADER="$1_tables.h"' \
 	  -I$(BUILD)/capbot/gen/$1/src -I$(CAPBOT_FW) -T $(CAPBOT_FW)/mps2_an386.ld $(CAPBOT_FW_SOURCES) \
 	  $$(filter-out %/main.c,$$(wildcard $(BUILD)/capbot/gen/$1/src/*.c)) -o $$@
 endef

@@ -1,9 +1,10 @@
 # C++ runtime (runtime_cpp/); the ARGoS target's rules are in mk/argos.mk.
-#   make bench        also runs the C++ steps-per-second benchmark (benchmarks/cpp_steps.py)
+#   make bench        also runs the C++ steps-per-second benchmark (benchmarks/cpp_steps.py): the
+#                     current VM against the baseline's (benchmarks/baseline.py), built side by side
 
 .PHONY: bench-cpp
 
 bench: bench-cpp
 
 bench-cpp:
-	$(PYTHON) benchmarks/cpp_steps.py
+	$(PYTHON) benchmarks/cpp_steps.py --json $(BUILD)/bench/cpp_steps.json

@@ -11,7 +11,8 @@
 #                   variant into $(BUILD)/kilobot-stream/ (`make footprint STREAM=1` checks it).
 #   make kilobot-board   the simavr Kilobot board (firmware/kilobot/board/: the IR channel)
 #   make emulate    runs the swap demo on the board (mk/emulate.mk)
-#   make bench      also runs benchmarks/avr_cycles.py (cycles per VM step in simavr)
+#   make bench      also runs benchmarks/avr_cycles.py (cycles per VM step in simavr and the VM
+#                   core's flash and RAM, current VM against the baseline, in one run)
 # Whether an image fits the robot is `make footprint`'s verdict (mk/footprint.mk).
 
 .PHONY: kilolib kilobot-firmware kilobot-board bench-avr

@@ -11,6 +11,18 @@
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
+/* Load-time code (checks, life cycle, names, bindings) on a microcontroller: optimised for
+ * size whatever the build's -O, so that -O3 (kilolib's flags) spends flash on the step only.
+ * GCC compiles a `cold` function as if with -Os. */
+#if defined(__GNUC__) && (defined(__AVR__) || (defined(__arm__) && !defined(__linux__)))
+#define SVM_COLD __attribute__((cold, noinline))
+#else
+#define SVM_COLD
+#endif
+
+/* A swap moves what is bound by event name (runtime bindings, svm_bind_priority's list). */
+#define REBIND_BY_NAME (SVM_WITH_NAMES && (SVM_WITH_BINDINGS || SVM_WITH_FIRST))
+
 /* ---- image access ------------------------------------------------------------------------
  * An image is read where it lives: `source` is SVM_SOURCE_RAM, _FLASH or _EEPROM. On AVR the
  * build chooses which sources it reads (SVM_IMAGE_SOURCES): SVM_FLASH_ONLY reads every byte
@@ -28,12 +40,12 @@
 #define READ(image, source, at) ((void)(source), (image)[at])
 #endif
 
-static uint8_t rd_raw(const uint8_t *image, uint8_t source, uint16_t at)
+static SVM_COLD uint8_t rd_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint8_t)READ(image, source, at);
 }
 
-static uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
+static SVM_COLD uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint16_t)(rd_raw(image, source, at) | ((uint16_t)rd_raw(image, source, (uint16_t)(at + 1u)) << 8));
 }
@@ -98,9 +110,9 @@ static SVM_INLINE uint8_t popcount8(uint8_t x)
 #else
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
-    x = (uint8_t)(x - ((x >> 1) & 0x55u));
-    x = (uint8_t)((x & 0x33u) + ((x >> 2) & 0x33u));
-    return (uint8_t)((x + (x >> 4)) & 0x0Fu);
+    x = (uint8_t)(x - (uint8_t)((x >> 1) & 0x55u));
+    x = (uint8_t)((uint8_t)(x & 0x33u) + (uint8_t)((x >> 2) & 0x33u));
+    return (uint8_t)((uint8_t)(x + (uint8_t)(x >> 4)) & 0x0Fu);
 }
 #endif
 
@@ -339,100 +351,228 @@ static SVM_INLINE uint8_t mask_count(mask_t a)
 /* The next event of the cursor (which has one), then visited. */
 static SVM_INLINE uint8_t cursor_next(cursor_t *c)
 {
-    uint8_t low, event;
+    uint8_t low;
     while ((low = cursor_byte(c)) == 0u) {
         cursor_skip_byte(c);
     }
     low = (uint8_t)(low & (uint8_t)-low);
     cursor_clear(c, low);
-    for (event = c->base; low != 1u; low = (uint8_t)(low >> 1)) {
-        event++;
-    }
-    return event;
+    return (uint8_t)(c->base + popcount8((uint8_t)(low - 1u)));    /* the bits below it */
 }
 
 /* ---- checksum and validation ------------------------------------------------------------- */
 
-/* CRC-16/MCRF4XX a byte at a time, without a table and without branches: the byte-wise form
- * of the reflected CCITT polynomial that avr-libc's _crc_ccitt_update also uses (8 shifts and
- * xors per byte instead of 8 conditional steps). */
-static SVM_INLINE uint16_t crc_byte(uint16_t crc, uint8_t byte)
+/* CRC-16/MCRF4XX, a byte at a time. The byte-wise form of the reflected CCITT polynomial that
+ * avr-libc's _crc_ccitt_update also uses: `d` = the byte xor the low byte of the sum, then
+ * crc = (crc >> 8) ^ T[d], T[d] = (e << 8) ^ (e << 3) ^ (e >> 4) with e = d ^ (d << 4) (mod
+ * 256). Where flash is not counted in bytes (SVM_CRC_TABLE, off on microcontrollers) T is a
+ * 512-byte table, and a second one (T2) takes two bytes a step; elsewhere T is computed: a few
+ * shifts and no branch, on AVR by avr-libc's _crc_ccitt_update (the same step in a few
+ * instructions of assembly, smaller than the compiled shifts). */
+#ifndef SVM_CRC_TABLE
+#if defined(__AVR__) || (defined(__arm__) && !defined(__linux__))
+#define SVM_CRC_TABLE 0
+#else
+#define SVM_CRC_TABLE 1
+#endif
+#endif
+
+#if SVM_CRC_TABLE && defined(__AVR__)
+#error "SVM_CRC_TABLE is for hosts: on AVR its tables would be copied into RAM"
+#endif
+#if defined(__AVR__)
+#include <util/crc16.h>
+#endif
+
+#if SVM_CRC_TABLE
+static const uint16_t crc_table[256] = {    /* T[0 .. 255] */
+    0x0000, 0x1189, 0x2312, 0x329B, 0x4624, 0x57AD, 0x6536, 0x74BF,
+    0x8C48, 0x9DC1, 0xAF5A, 0xBED3, 0xCA6C, 0xDBE5, 0xE97E, 0xF8F7,
+    0x1081, 0x0108, 0x3393, 0x221A, 0x56A5, 0x472C, 0x75B7, 0x643E,
+    0x9CC9, 0x8D40, 0xBFDB, 0xAE52, 0xDAED, 0xCB64, 0xF9FF, 0xE876,
+    0x2102, 0x308B, 0x0210, 0x1399, 0x6726, 0x76AF, 0x4434, 0x55BD,
+    0xAD4A, 0xBCC3, 0x8E58, 0x9FD1, 0xEB6E, 0xFAE7, 0xC87C, 0xD9F5,
+    0x3183, 0x200A, 0x1291, 0x0318, 0x77A7, 0x662E, 0x54B5, 0x453C,
+    0xBDCB, 0xAC42, 0x9ED9, 0x8F50, 0xFBEF, 0xEA66, 0xD8FD, 0xC974,
+    0x4204, 0x538D, 0x6116, 0x709F, 0x0420, 0x15A9, 0x2732, 0x36BB,
+    0xCE4C, 0xDFC5, 0xED5E, 0xFCD7, 0x8868, 0x99E1, 0xAB7A, 0xBAF3,
+    0x5285, 0x430C, 0x7197, 0x601E, 0x14A1, 0x0528, 0x37B3, 0x263A,
+    0xDECD, 0xCF44, 0xFDDF, 0xEC56, 0x98E9, 0x8960, 0xBBFB, 0xAA72,
+    0x6306, 0x728F, 0x4014, 0x519D, 0x2522, 0x34AB, 0x0630, 0x17B9,
+    0xEF4E, 0xFEC7, 0xCC5C, 0xDDD5, 0xA96A, 0xB8E3, 0x8A78, 0x9BF1,
+    0x7387, 0x620E, 0x5095, 0x411C, 0x35A3, 0x242A, 0x16B1, 0x0738,
+    0xFFCF, 0xEE46, 0xDCDD, 0xCD54, 0xB9EB, 0xA862, 0x9AF9, 0x8B70,
+    0x8408, 0x9581, 0xA71A, 0xB693, 0xC22C, 0xD3A5, 0xE13E, 0xF0B7,
+    0x0840, 0x19C9, 0x2B52, 0x3ADB, 0x4E64, 0x5FED, 0x6D76, 0x7CFF,
+    0x9489, 0x8500, 0xB79B, 0xA612, 0xD2AD, 0xC324, 0xF1BF, 0xE036,
+    0x18C1, 0x0948, 0x3BD3, 0x2A5A, 0x5EE5, 0x4F6C, 0x7DF7, 0x6C7E,
+    0xA50A, 0xB483, 0x8618, 0x9791, 0xE32E, 0xF2A7, 0xC03C, 0xD1B5,
+    0x2942, 0x38CB, 0x0A50, 0x1BD9, 0x6F66, 0x7EEF, 0x4C74, 0x5DFD,
+    0xB58B, 0xA402, 0x9699, 0x8710, 0xF3AF, 0xE226, 0xD0BD, 0xC134,
+    0x39C3, 0x284A, 0x1AD1, 0x0B58, 0x7FE7, 0x6E6E, 0x5CF5, 0x4D7C,
+    0xC60C, 0xD785, 0xE51E, 0xF497, 0x8028, 0x91A1, 0xA33A, 0xB2B3,
+    0x4A44, 0x5BCD, 0x6956, 0x78DF, 0x0C60, 0x1DE9, 0x2F72, 0x3EFB,
+    0xD68D, 0xC704, 0xF59F, 0xE416, 0x90A9, 0x8120, 0xB3BB, 0xA232,
+    0x5AC5, 0x4B4C, 0x79D7, 0x685E, 0x1CE1, 0x0D68, 0x3FF3, 0x2E7A,
+    0xE70E, 0xF687, 0xC41C, 0xD595, 0xA12A, 0xB0A3, 0x8238, 0x93B1,
+    0x6B46, 0x7ACF, 0x4854, 0x59DD, 0x2D62, 0x3CEB, 0x0E70, 0x1FF9,
+    0xF78F, 0xE606, 0xD49D, 0xC514, 0xB1AB, 0xA022, 0x92B9, 0x8330,
+    0x7BC7, 0x6A4E, 0x58D5, 0x495C, 0x3DE3, 0x2C6A, 0x1EF1, 0x0F78
+};
+/* T2[x]: the sum after byte x then a zero byte, (T[x] >> 8) ^ T[T[x] & 0xFF]: two bytes per lookup
+ * pair (the sum xor the next two bytes, little-endian, indexes T2 by its low byte and T by its
+ * high byte). */
+static const uint16_t crc_table2[256] = {
+    0x0000, 0x19D8, 0x33B0, 0x2A68, 0x6760, 0x7EB8, 0x54D0, 0x4D08,
+    0xCEC0, 0xD718, 0xFD70, 0xE4A8, 0xA9A0, 0xB078, 0x9A10, 0x83C8,
+    0x9591, 0x8C49, 0xA621, 0xBFF9, 0xF2F1, 0xEB29, 0xC141, 0xD899,
+    0x5B51, 0x4289, 0x68E1, 0x7139, 0x3C31, 0x25E9, 0x0F81, 0x1659,
+    0x2333, 0x3AEB, 0x1083, 0x095B, 0x4453, 0x5D8B, 0x77E3, 0x6E3B,
+    0xEDF3, 0xF42B, 0xDE43, 0xC79B, 0x8A93, 0x934B, 0xB923, 0xA0FB,
+    0xB6A2, 0xAF7A, 0x8512, 0x9CCA, 0xD1C2, 0xC81A, 0xE272, 0xFBAA,
+    0x7862, 0x61BA, 0x4BD2, 0x520A, 0x1F02, 0x06DA, 0x2CB2, 0x356A,
+    0x4666, 0x5FBE, 0x75D6, 0x6C0E, 0x2106, 0x38DE, 0x12B6, 0x0B6E,
+    0x88A6, 0x917E, 0xBB16, 0xA2CE, 0xEFC6, 0xF61E, 0xDC76, 0xC5AE,
+    0xD3F7, 0xCA2F, 0xE047, 0xF99F, 0xB497, 0xAD4F, 0x8727, 0x9EFF,
+    0x1D37, 0x04EF, 0x2E87, 0x375F, 0x7A57, 0x638F, 0x49E7, 0x503F,
+    0x6555, 0x7C8D, 0x56E5, 0x4F3D, 0x0235, 0x1BED, 0x3185, 0x285D,
+    0xAB95, 0xB24D, 0x9825, 0x81FD, 0xCCF5, 0xD52D, 0xFF45, 0xE69D,
+    0xF0C4, 0xE91C, 0xC374, 0xDAAC, 0x97A4, 0x8E7C, 0xA414, 0xBDCC,
+    0x3E04, 0x27DC, 0x0DB4, 0x146C, 0x5964, 0x40BC, 0x6AD4, 0x730C,
+    0x8CCC, 0x9514, 0xBF7C, 0xA6A4, 0xEBAC, 0xF274, 0xD81C, 0xC1C4,
+    0x420C, 0x5BD4, 0x71BC, 0x6864, 0x256C, 0x3CB4, 0x16DC, 0x0F04,
+    0x195D, 0x0085, 0x2AED, 0x3335, 0x7E3D, 0x67E5, 0x4D8D, 0x5455,
+    0xD79D, 0xCE45, 0xE42D, 0xFDF5, 0xB0FD, 0xA925, 0x834D, 0x9A95,
+    0xAFFF, 0xB627, 0x9C4F, 0x8597, 0xC89F, 0xD147, 0xFB2F, 0xE2F7,
+    0x613F, 0x78E7, 0x528F, 0x4B57, 0x065F, 0x1F87, 0x35EF, 0x2C37,
+    0x3A6E, 0x23B6, 0x09DE, 0x1006, 0x5D0E, 0x44D6, 0x6EBE, 0x7766,
+    0xF4AE, 0xED76, 0xC71E, 0xDEC6, 0x93CE, 0x8A16, 0xA07E, 0xB9A6,
+    0xCAAA, 0xD372, 0xF91A, 0xE0C2, 0xADCA, 0xB412, 0x9E7A, 0x87A2,
+    0x046A, 0x1DB2, 0x37DA, 0x2E02, 0x630A, 0x7AD2, 0x50BA, 0x4962,
+    0x5F3B, 0x46E3, 0x6C8B, 0x7553, 0x385B, 0x2183, 0x0BEB, 0x1233,
+    0x91FB, 0x8823, 0xA24B, 0xBB93, 0xF69B, 0xEF43, 0xC52B, 0xDCF3,
+    0xE999, 0xF041, 0xDA29, 0xC3F1, 0x8EF9, 0x9721, 0xBD49, 0xA491,
+    0x2759, 0x3E81, 0x14E9, 0x0D31, 0x4039, 0x59E1, 0x7389, 0x6A51,
+    0x7C08, 0x65D0, 0x4FB8, 0x5660, 0x1B68, 0x02B0, 0x28D8, 0x3100,
+    0xB2C8, 0xAB10, 0x8178, 0x98A0, 0xD5A8, 0xCC70, 0xE618, 0xFFC0
+};
+#endif
+
+/* One byte of the sum: the image check's tail and svm_crc16_update (the learned-parameter
+ * store's records) share it. */
+static SVM_INLINE unsigned crc_byte(unsigned crc, uint8_t byte)
 {
-    uint8_t d = (uint8_t)(byte ^ (uint8_t)crc);
-    d = (uint8_t)(d ^ (uint8_t)(d << 4));
-    return (uint16_t)((((uint16_t)d << 8) | (crc >> 8)) ^ (uint8_t)(d >> 4) ^ ((uint16_t)d << 3));
+#if defined(__AVR__)
+    return _crc_ccitt_update((uint16_t)crc, byte);
+#elif SVM_CRC_TABLE
+    return (crc >> 8) ^ crc_table[(byte ^ crc) & 0xFFu];
+#else
+    unsigned e = (byte ^ crc) & 0xFFu;
+    e = (e ^ (e << 4)) & 0xFFu;
+    return (crc >> 8) ^ ((e << 8) & 0xFFFFu) ^ ((e << 3) & 0xFFFFu) ^ (e >> 4);
+#endif
 }
 
 uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
 {
-    return crc_byte(crc, byte);
+    return (uint16_t)crc_byte(crc, byte);
 }
 
-static uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
+static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
-    uint16_t crc = SVM_CRC16_INIT;
-    uint16_t i;
-    for (i = 0; i < length; i++) {
-        crc = crc_byte(crc, rd_raw(image, source, i));
+    /* Native ints (16 bits on AVR) and a pointer walk: no truncation or index sum per byte. */
+    unsigned crc = SVM_CRC16_INIT;
+    const uint8_t *p = image, *end = image + length;
+#if SVM_CRC_TABLE
+    for (; end - p >= 2; p += 2) {
+        crc ^= (unsigned)PEEK(source, p) | (unsigned)PEEK(source, p + 1) << 8;
+        crc = crc_table2[crc & 0xFFu] ^ crc_table[crc >> 8];
     }
-    return crc;
+#endif
+    for (; p != end; p++) {
+        crc = crc_byte(crc, PEEK(source, p));
+    }
+    return (uint16_t)crc;
 }
 
-/* What svm_load needs to know once an image has been accepted. */
+/* What svm_load needs to know once an image has been accepted: section offsets and header. */
 typedef struct layout {
     uint16_t states_at, targets_at, probs_at, names_at;
+    uint8_t header[SVM_HEADER_SIZE];
 } layout_t;
 
-/* Whether the event mask of `m` bytes at `at` has a bit set at or above event `e` (in its last
- * byte's padding): an event the image does not have. */
-static uint8_t beyond_events(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
+/* `count` bytes of an image from `at` into `out` (RAM): the checks below read a record once
+ * into locals instead of calling the reader per field. */
+static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source, uint16_t at, uint8_t count)
+{
+    for (; count != 0u; count--, at++) {
+        *out++ = rd_raw(image, source, at);
+    }
+}
+
+/* The little-endian u16 at `p` in RAM. */
+static SVM_INLINE uint16_t le16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
+}
+
+/* Whether byte `last` of an event mask (its last byte) has a bit at or above event `e` (in the
+ * padding): an event the image does not have. */
+static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)
 {
     uint8_t used = (uint8_t)(e & 7u);
-    return used != 0u && (rd_raw(image, source, (uint16_t)(at + m - 1u)) >> used) != 0u;
+    return used != 0u && (uint8_t)(last >> used) != 0u;
+}
+
+/* Whether the event mask of `m` bytes at `at` has a bit beyond the image's `e` events. */
+static SVM_COLD uint8_t mask_beyond(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
+{
+    return beyond_events(rd_raw(image, source, (uint16_t)(at + m - 1u)), e);
 }
 
 /* Every index the step follows must stay inside the image, every event mask inside the image's
- * events: check them once here. */
-static int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
+ * events: check them once here. Supervisor and state records are
+ * walked in order (the states of supervisor s follow those of s - 1), so no record offset is
+ * multiplied out. */
+static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
 {
-    uint8_t m = rd_raw(image, source, SVM_AT_MASK_BYTES), width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
-    uint8_t n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS), e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
-    uint16_t total_states = rd16_raw(image, source, SVM_AT_NUM_STATES);
-    uint16_t total_trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
-    uint16_t expected_first = 0;
-    uint8_t s;
-    if (beyond_events(image, source, CONTROLLABLE_AT, m, e) || beyond_events(image, source, PUBLIC_AT(m), m, e)) {
+    const uint8_t *h = lay->header;
+    uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
+    uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
+    uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
+    uint16_t expected_first = 0, alphabet = (uint16_t)SUPS_AT(m);
+    const uint8_t *st = image + lay->states_at, *targets = image + lay->targets_at;
+    if (mask_beyond(image, source, CONTROLLABLE_AT, m, e) || mask_beyond(image, source, (uint16_t)PUBLIC_AT(m), m, e)) {
         return SVM_ERR_LAYOUT;
     }
-    for (s = 0; s < n; s++) {
-        uint16_t alphabet = (uint16_t)(SUPS_AT(m) + (uint16_t)s * (m + 6u));
-        uint16_t at = (uint16_t)(alphabet + m);
-        uint16_t first = rd16_raw(image, source, at);
-        uint16_t count = rd16_raw(image, source, (uint16_t)(at + 2u));
-        uint16_t init = rd16_raw(image, source, (uint16_t)(at + 4u));
-        uint16_t q;
-        if (first != expected_first || count == 0 || init >= count || count > total_states - first ||
-            beyond_events(image, source, alphabet, m, e)) {
+    for (s = 0; s < n; s++, alphabet = (uint16_t)(alphabet + SUP_SIZE(m))) {
+        uint16_t first, count, q;
+        rd_copy(record, image, source, (uint16_t)(alphabet + m), 6u);    /* first, count, initial */
+        first = le16(record);
+        count = le16(record + 2);
+        if (first != expected_first || count == 0 || le16(record + 4) >= count || count > total_states - first ||
+            mask_beyond(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
-        for (q = 0; q < count; q++) {
-            uint16_t st = (uint16_t)(lay->states_at + (uint16_t)(first + q) * (m + 2u));
-            uint16_t succ = rd16_raw(image, source, (uint16_t)(st + m));
-            uint16_t defined = 0, k;
-            uint8_t i;
-            if (beyond_events(image, source, st, m, e)) {
-                return SVM_ERR_LAYOUT;
-            }
+        for (q = 0; q < count; q++, st += STATE_SIZE(m)) {
+            uint16_t defined = 0, succ, k;
+            const uint8_t *target;
+            uint8_t i, byte = 0;
             for (i = 0; i < m; i++) {
-                defined = (uint16_t)(defined + popcount8(rd_raw(image, source, (uint16_t)(st + i))));
+                byte = PEEK(source, st + i);
+                defined = (uint16_t)(defined + popcount8(byte));
             }
-            if (succ > total_trans || defined > total_trans - succ) {
+            succ = (uint16_t)(PEEK(source, st + m) | (unsigned)PEEK(source, st + m + 1) << 8);
+            if (beyond_events(byte, e) || succ > total_trans || defined > total_trans - succ) {
                 return SVM_ERR_LAYOUT;
             }
-            for (k = 0; k < defined; k++) {
-                uint16_t t_at = (uint16_t)(lay->targets_at + (uint16_t)(succ + k) * width);
-                uint16_t target = width == 1u ? rd_raw(image, source, t_at) : rd16_raw(image, source, t_at);
-                if (target >= count) {
+            target = targets + (succ << (width - 1u));
+            for (k = 0; k < defined; k++, target += width) {
+                unsigned local = PEEK(source, target);
+                if (width != 1u) {
+                    local |= (unsigned)PEEK(source, target + 1) << 8;
+                }
+                if (local >= count) {
                     return SVM_ERR_LAYOUT;
                 }
             }
@@ -448,34 +588,46 @@ static uint8_t name_char(uint8_t c)
     return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
 }
 
-static int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
+/* Past every image: a section end beyond the checksum (lengths are at most 65535). */
+#define PAST_END 0xFFFFu
+
+/* `pos` + `count` * `size`, or PAST_END when that passes `end` (<= 65533): section offsets stay
+ * 16-bit and a corrupt header never makes them wrap around (PAST_END stays PAST_END). */
+static SVM_COLD uint16_t section_end(uint16_t pos, uint16_t count, uint8_t size, uint16_t end)
 {
-    uint8_t flags, e, n, width, m;
-    uint16_t states, trans, end, i;
-    uint32_t pos;
-    if (image == 0 || length < SVM_MIN_IMAGE_SIZE || rd16_raw(image, source, SVM_AT_LENGTH) != length) {
+    uint32_t to = (uint32_t)count * size + pos;
+    return to > end ? PAST_END : (uint16_t)to;
+}
+
+static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
+{
+    /* The header is copied into lay->header here, before anything reads it. */
+    uint8_t *h = lay->header, flags, e, m, i;  // cppcheck-suppress ctuuninitvar
+    uint16_t states, trans, end, pos;
+    if (image == 0 || length < SVM_MIN_IMAGE_SIZE) {
         return SVM_ERR_LENGTH;
     }
-    if (rd16_raw(image, source, SVM_AT_MAGIC) != (uint16_t)SVM_MAGIC ||
-        rd16_raw(image, source, SVM_AT_MAGIC + 2u) != (uint16_t)(SVM_MAGIC >> 16)) {
+    rd_copy(h, image, source, 0u, SVM_HEADER_SIZE);
+    if (le16(h + SVM_AT_LENGTH) != length) {
+        return SVM_ERR_LENGTH;
+    }
+    if (le16(h + SVM_AT_MAGIC) != (uint16_t)SVM_MAGIC || le16(h + SVM_AT_MAGIC + 2u) != (uint16_t)(SVM_MAGIC >> 16)) {
         return SVM_ERR_MAGIC;
     }
-    if (rd_raw(image, source, SVM_AT_VERSION) != SVM_FORMAT_VERSION) {
+    if (h[SVM_AT_VERSION] != SVM_FORMAT_VERSION) {
         return SVM_ERR_VERSION;
     }
     end = (uint16_t)(length - SVM_CRC_SIZE);
     if (crc16(image, source, end) != rd16_raw(image, source, end)) {
         return SVM_ERR_CRC;
     }
-    flags = rd_raw(image, source, SVM_AT_FLAGS);
-    e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
-    n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS);
-    states = rd16_raw(image, source, SVM_AT_NUM_STATES);
-    trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
-    width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
-    m = rd_raw(image, source, SVM_AT_MASK_BYTES);
-    if (e == 0 || n == 0 || (width != 1u && width != 2u) || m != (uint8_t)((e + 7u) / 8u) ||
-        (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
+    flags = h[SVM_AT_FLAGS];
+    e = h[SVM_AT_NUM_EVENTS];
+    states = le16(h + SVM_AT_NUM_STATES);
+    trans = le16(h + SVM_AT_NUM_TRANSITIONS);
+    m = h[SVM_AT_MASK_BYTES];
+    if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || (uint8_t)(h[SVM_AT_STATE_WIDTH] - 1u) > 1u ||
+        m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
@@ -483,49 +635,43 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
         return SVM_ERR_LIMITS;
     }
 #endif
-    /* Section offsets in 32 bits: a corrupt header must not wrap around. */
-    pos = SVM_HEADER_SIZE + 2u * (uint32_t)m + (uint32_t)n * (m + 6u);
-    lay->states_at = (uint16_t)pos;
-    pos += (uint32_t)states * (m + 2u);
-    lay->targets_at = (uint16_t)pos;
-    pos += (uint32_t)trans * width;
+    lay->states_at = pos = section_end((uint16_t)SUPS_AT(m), h[SVM_AT_NUM_SUPERVISORS], (uint8_t)SUP_SIZE(m), end);
+    lay->targets_at = pos = section_end(pos, states, (uint8_t)STATE_SIZE(m), end);
+    pos = section_end(pos, trans, h[SVM_AT_STATE_WIDTH], end);
     lay->probs_at = 0;
     if (flags & SVM_FLAG_PROBS) {
-        lay->probs_at = (uint16_t)pos;
-        pos += 2u * (uint32_t)trans;
+        lay->probs_at = pos;
+        pos = section_end(pos, trans, 2u, end);
     }
     lay->names_at = 0;
     if (pos > end) {
         return SVM_ERR_LAYOUT;
     }
     if (flags & SVM_FLAG_NAMES) {
-        lay->names_at = (uint16_t)pos;
+        lay->names_at = pos;
         for (i = 0; i < e; i++) {
-            uint32_t name_end;
-            if (pos >= end) {
-                return SVM_ERR_LAYOUT;
-            }
-            name_end = pos + 1u + rd_raw(image, source, (uint16_t)pos);
-            if (name_end > end) {
+            uint16_t name_end;
+            if (pos >= end || (name_end = section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end)) ==
+                                  PAST_END) {
                 return SVM_ERR_LAYOUT;
             }
             for (pos++; pos < name_end; pos++) {
-                if (!name_char(rd_raw(image, source, (uint16_t)pos))) {
+                if (!name_char(rd_raw(image, source, pos))) {
                     return SVM_ERR_LAYOUT;
                 }
             }
         }
     }
     if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
-        if (pos + e + 2u * (uint32_t)states > end) {
+        if (section_end(section_end(pos, e, 1u, end), states, 2u, end) == PAST_END) {
             return SVM_ERR_LAYOUT;
         }
         for (i = 0; i < e; i++, pos++) {
-            if (rd_raw(image, source, (uint16_t)pos) >= e) {
+            if (rd_raw(image, source, pos) >= e) {
                 return SVM_ERR_LAYOUT;
             }
         }
-        pos += 2u * (uint32_t)states;
+        pos = section_end(pos, states, 2u, end);
     }
     if (pos != end) {
         return SVM_ERR_LAYOUT;
@@ -537,7 +683,7 @@ static int validate(const uint8_t *image, uint8_t source, uint16_t length, layou
     }
 #endif
 #if SVM_MAX_SUPERVISORS < 255
-    if (n > SVM_MAX_SUPERVISORS) {
+    if (h[SVM_AT_NUM_SUPERVISORS] > SVM_MAX_SUPERVISORS) {
         return SVM_ERR_LIMITS;
     }
 #endif
@@ -568,7 +714,7 @@ static uint8_t readable(uint8_t source)
 #endif
 }
 
-int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
+SVM_COLD int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
     return readable(source) ? validate(image, source, length, &lay) : SVM_ERR_SOURCE;
@@ -576,7 +722,7 @@ int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
 
 /* ---- life cycle ---------------------------------------------------------------------------- */
 
-void svm_init(svm_vm_t *vm)
+SVM_COLD void svm_init(svm_vm_t *vm)
 {
     uint8_t *raw = (uint8_t *)vm;
     uint16_t i;
@@ -584,23 +730,29 @@ void svm_init(svm_vm_t *vm)
         raw[i] = 0;
     }
     vm->image = 0;
+#if SVM_WITH_BINDINGS
     vm->bindings = 0;
+#endif
     vm->dispatch = 0;
+#if SVM_WITH_LEARNED
     vm->chooser = 0;
     vm->chooser_ctx = 0;
+#endif
     vm->on_violation = 0;
+#if SVM_WITH_FIRST
     vm->priority = 0;
     vm->priority_by_name = 0;
+#endif
     vm->seed = SVM_DEFAULT_SEED;
     vm->rng = SVM_DEFAULT_SEED;
 }
 
-void svm_reset(svm_vm_t *vm)
+SVM_COLD void svm_reset(svm_vm_t *vm)
 {
-    uint8_t s;
-    for (s = 0; s < vm->num_supervisors; s++) {
-        uint16_t sup = (uint16_t)SUP_AT(vm, s);
-        vm->state[s] = (svm_state_t)(RD16(vm, sup + vm->mask_bytes) + RD16(vm, sup + vm->mask_bytes + 4u));
+    uint8_t s, m = vm->mask_bytes;
+    const uint8_t *record = vm->image + SUPS_AT(m) + m;    /* first state, count, initial */
+    for (s = 0; s < vm->num_supervisors; s++, record += SUP_SIZE(m)) {
+        vm->state[s] = (svm_state_t)(peek16(vm->source, record) + peek16(vm->source, record + 4));
     }
     for (s = 0; s < SVM_MASK_BYTES; s++) {
         vm->previous[s] = 0;
@@ -609,8 +761,9 @@ void svm_reset(svm_vm_t *vm)
     vm->rng = vm->seed ? vm->seed : SEED_FOR_ZERO;
 }
 
+#if SVM_WITH_NAMES
 /* Offset of the event's name record (length byte, then the name) in an image. */
-static uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at, uint8_t event)
+static SVM_COLD uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at, uint8_t event)
 {
     uint16_t pos = names_at;
     uint8_t i;
@@ -620,9 +773,10 @@ static uint16_t name_at(const uint8_t *image, uint8_t source, uint16_t names_at,
     return pos;
 }
 
+#if REBIND_BY_NAME
 /* Index, in a new image (validated, not yet loaded), of the old image's event of the same
  * name; -1 if it has none. Either image may be in flash, RAM or EEPROM. */
-static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
+static SVM_COLD int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
                        const layout_t *lay, uint8_t old_event)
 {
     uint16_t old_pos = name_at(vm->image, vm->source, vm->names_at, old_event);
@@ -646,6 +800,7 @@ static int find_in_new(const svm_vm_t *vm, const uint8_t *image, uint8_t source,
     return -1;
 }
 
+#if SVM_WITH_BINDINGS
 static uint8_t is_bound(const svm_binding_t *b)
 {
     return b->action != 0 || b->check != 0 || b->data != 0;
@@ -655,7 +810,7 @@ static uint8_t is_bound(const svm_binding_t *b)
  * new image, in place. The map is injective (names are unique), so carrying a binding to its
  * new slot, picking up the binding that slot held and carrying that on, places every binding
  * once, whether its moves form a chain or a cycle. */
-static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
+static SVM_COLD int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
 {
     uint8_t map[SVM_MAX_EVENTS] = {0};     /* zeroed only for gcc's flow analysis: entries past */
     uint8_t moved[SVM_MASK_BYTES];          /* `limit` are never read (-Wmaybe-uninitialized at */
@@ -697,10 +852,12 @@ static int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t source, co
     }
     return SVM_OK;
 }
+#endif /* SVM_WITH_BINDINGS */
 
+#if SVM_WITH_FIRST
 /* Swap: the priority list of svm_bind_priority follows its events' names into the new image;
  * with `write` 0 only checks that every name is there, so that a refusal changes nothing. */
-static int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay,
+static SVM_COLD int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay,
                            uint8_t write)
 {
     uint8_t k;
@@ -718,34 +875,49 @@ static int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t source, c
     }
     return SVM_OK;
 }
+#endif /* SVM_WITH_FIRST */
+#endif /* REBIND_BY_NAME */
+#endif /* SVM_WITH_NAMES */
 
-static int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
+static SVM_COLD int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
+#if REBIND_BY_NAME
     uint8_t rebind = vm->image != 0 && vm->names_at != 0;
+#endif
     int result = validate(image, source, length, &lay);
     if (result != SVM_OK) {
         return result;
     }
+#if SVM_WITH_NAMES && SVM_WITH_FIRST
     if (rebind && vm->priority_by_name != 0 && (result = rebind_priority(vm, image, source, &lay, 0)) != SVM_OK) {
         return result;
     }
+#endif
+#if SVM_WITH_NAMES && SVM_WITH_BINDINGS
     if (rebind && vm->bindings != 0 && (result = rebind_by_name(vm, image, source, &lay)) != SVM_OK) {
         return result;
     }
+#endif
+#if SVM_WITH_NAMES && SVM_WITH_FIRST
     if (rebind && vm->priority_by_name != 0) {
         (void)rebind_priority(vm, image, source, &lay, 1);
     }
+#endif
     vm->image = image;
     vm->source = source;
     vm->states_at = lay.states_at;
     vm->targets_at = lay.targets_at;
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
     vm->probs_at = lay.probs_at;
+#endif
+#if SVM_WITH_NAMES
     vm->names_at = lay.names_at;
-    vm->num_events = RD(vm, SVM_AT_NUM_EVENTS);
-    vm->num_supervisors = RD(vm, SVM_AT_NUM_SUPERVISORS);
-    vm->width = RD(vm, SVM_AT_STATE_WIDTH);
-    vm->mask_bytes = RD(vm, SVM_AT_MASK_BYTES);
+#endif
+    vm->num_events = lay.header[SVM_AT_NUM_EVENTS];
+    vm->num_supervisors = lay.header[SVM_AT_NUM_SUPERVISORS];
+    vm->width = lay.header[SVM_AT_STATE_WIDTH];
+    vm->mask_bytes = lay.header[SVM_AT_MASK_BYTES];
     svm_reset(vm);
     return SVM_OK;
 }
@@ -777,7 +949,8 @@ void svm_set_options(svm_vm_t *vm, uint8_t options, uint32_t seed)
 
 /* ---- callbacks ----------------------------------------------------------------------------- */
 
-void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
+#if SVM_WITH_BINDINGS
+SVM_COLD void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
 {
     uint8_t e;
     for (e = 0; e < cap; e++) {
@@ -789,7 +962,7 @@ void svm_set_bindings(svm_vm_t *vm, svm_binding_t *table, uint8_t cap)
     vm->bindings_cap = cap;
 }
 
-int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn check, void *data)
+SVM_COLD int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn check, void *data)
 {
     if (vm->bindings == 0) {
         return SVM_ERR_NO_BINDINGS;
@@ -807,18 +980,22 @@ int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_check_fn che
     vm->bindings[event].data = data;
     return SVM_OK;
 }
+#endif
 
 void svm_set_dispatch(svm_vm_t *vm, svm_dispatch_fn dispatch)
 {
     vm->dispatch = dispatch;
 }
 
+#if SVM_WITH_LEARNED
 void svm_set_chooser(svm_vm_t *vm, svm_chooser_fn chooser, void *ctx)
 {
     vm->chooser = chooser;
     vm->chooser_ctx = ctx;
 }
+#endif
 
+#if SVM_WITH_FIRST
 void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count)
 {
     vm->priority = events;
@@ -831,6 +1008,7 @@ void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count)
     svm_set_priority(vm, events, count);
     vm->priority_by_name = events;
 }
+#endif
 
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
 {
@@ -839,9 +1017,13 @@ void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
 
 static void run_action(svm_vm_t *vm, uint8_t event)
 {
+#if SVM_WITH_BINDINGS
     if (vm->bindings != 0 && event < vm->bindings_cap && vm->bindings[event].action != 0) {
         vm->bindings[event].action(vm->bindings[event].data);
-    } else if (vm->dispatch != 0) {
+        return;
+    }
+#endif
+    if (vm->dispatch != 0) {
         (void)vm->dispatch(vm, event, SVM_OP_ACTION);
     }
 }
@@ -960,6 +1142,7 @@ uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled)
     return mask_count(mask);
 }
 
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
 uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
@@ -980,8 +1163,9 @@ uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
     }
     return weight;
 }
+#endif
 
-uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
+SVM_COLD uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
 {
     uint8_t i, bit;
     for (i = 0; i < bytes; i++) {
@@ -1028,19 +1212,28 @@ static uint8_t uniform_index(uint32_t r, uint8_t count)
     return (uint8_t)(((uint16_t)((uint16_t)hi * count) + low_part) >> 8);
 }
 
+#if SVM_WITH_FIRST || SVM_WITH_LEARNED
 /* Whether event `e` (< E) is in the byte mask `bytes`. */
 static uint8_t has_event(const uint8_t *bytes, uint8_t e)
 {
     return (uint8_t)(((unsigned)bytes[e >> 3] >> (e & 7u)) & 1u);
 }
+#endif
 
-/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. */
+/* Docs/semantics.md "Selection policies"; `count` >= 1. Returns 0xFF for no event. A policy
+ * this build leaves out (SVM_WITH_*) runs as uniform. */
 static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
 {
-    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), bytes[SVM_MASK_BYTES], e;
+#if SVM_WITH_FIRST || SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
+    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), e;
+#endif
+#if SVM_WITH_FIRST || SVM_WITH_LEARNED
+    uint8_t bytes[SVM_MASK_BYTES];
     if (policy == SVM_POLICY_LEARNED || policy == SVM_POLICY_FIRST) {
         mask_store(bytes, enabled, vm->mask_bytes);
     }
+#endif
+#if SVM_WITH_LEARNED
     if (policy == SVM_POLICY_LEARNED) {
         if (vm->chooser == 0) {
             return 0xFFu;
@@ -1048,6 +1241,8 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         e = vm->chooser(vm, bytes, count, vm->chooser_ctx);
         return (e < vm->num_events && has_event(bytes, e)) ? e : 0xFFu;
     }
+#endif
+#if SVM_WITH_FIRST
     if (policy == SVM_POLICY_FIRST) {
         uint8_t k;
         for (k = 0; k < vm->priority_count; k++) {
@@ -1058,9 +1253,11 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         }
         return nth_event(enabled, 0);
     }
+#endif
     if (count == 1u) {
         return nth_event(enabled, 0);
     }
+#if SVM_WITH_WEIGHTED
     if (policy == SVM_POLICY_WEIGHTED) {
         uint32_t total = 0, pick;
         cursor_t c;
@@ -1080,6 +1277,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
             }
         }
     }
+#endif
     return nth_event(enabled, uniform_index(svm_random(vm), count));
 }
 
@@ -1088,9 +1286,12 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
  * are read once per step (callbacks must not rebind during a step). */
 static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 {
+#if SVM_WITH_BINDINGS
     const svm_binding_t *bindings = vm->bindings;
+    uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u;
+#endif
     svm_dispatch_fn dispatch = vm->dispatch;
-    uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u, pass, i, current[SVM_MASK_BYTES];
+    uint8_t pass, i, current[SVM_MASK_BYTES];
     cursor_t c;
     for (i = 0; i < SVM_MASK_BYTES; i++) {
         current[i] = 0;
@@ -1103,9 +1304,12 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
                 if (!(todo & 1u)) {
                     continue;
                 }
+#if SVM_WITH_BINDINGS
                 if (event < cap && bindings[event].check != 0) {
                     occurs = bindings[event].check(bindings[event].data) != 0;
-                } else {
+                } else
+#endif
+                {
                     occurs = dispatch != 0 && dispatch(vm, event, SVM_OP_CHECK) != 0;
                 }
                 if (occurs) {
@@ -1192,7 +1396,7 @@ uint8_t svm_mask_bytes(const svm_vm_t *vm)
     return vm->mask_bytes;
 }
 
-uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
+SVM_COLD uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
 {
     if (vm->image == 0 || supervisor >= vm->num_supervisors) {
         return 0;
@@ -1234,7 +1438,8 @@ uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event)
                      (RD(vm, PUBLIC_AT(vm->mask_bytes) + (event >> 3)) & (1u << (event & 7u))));
 }
 
-int svm_event_index(const svm_vm_t *vm, const char *name)
+#if SVM_WITH_NAMES
+SVM_COLD int svm_event_index(const svm_vm_t *vm, const char *name)
 {
     uint16_t pos = vm->names_at;
     uint8_t e, i;
@@ -1259,17 +1464,12 @@ int svm_event_index(const svm_vm_t *vm, const char *name)
     return -1;
 }
 
-uint8_t svm_image_byte(const svm_vm_t *vm, uint16_t at)
-{
-    return RD(vm, at);
-}
-
 uint8_t svm_has_names(const svm_vm_t *vm)
 {
     return (uint8_t)(vm->image != 0 && vm->names_at != 0);
 }
 
-uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap)
+SVM_COLD uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap)
 {
     uint16_t pos;
     uint8_t len, i;
@@ -1288,4 +1488,10 @@ uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap
         buf[i] = '\0';
     }
     return len;
+}
+#endif /* SVM_WITH_NAMES */
+
+uint8_t svm_image_byte(const svm_vm_t *vm, uint16_t at)
+{
+    return RD(vm, at);
 }

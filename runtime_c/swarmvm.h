@@ -21,7 +21,22 @@
  *                         SVM_FLASH_ONLY (svm_load_P only; faster, smaller), SVM_RAM_ONLY,
  *                         or SVM_ANY_SOURCE (also EEPROM, svm_load_E)
  *   SVM_POPCOUNT_TABLE    1: count the bits of a mask byte with a 256-byte table in flash
- *                         (default on AVR, where it saves about 4 % of a step), 0: arithmetic
+ *                         (default on AVR, where it saves about 4 % of a step, but at -Os,
+ *                         which asks for flash first, and on hosts; not on bare-metal ARM),
+ *                         0: arithmetic
+ *
+ * Features (each 1 by default; a build that does not use one sets it to 0 and its code is not
+ * compiled: the generated Kilobot Makefile keeps only what its program calls):
+ *   SVM_WITH_BINDINGS     the runtime binding table (svm_set_bindings, svm_bind) and its
+ *                         rebinding by name on a swap; without it callbacks are the dispatch's
+ *   SVM_WITH_NAMES        reading event names (svm_event_index, svm_event_name, svm_has_names)
+ *                         and rebinding by name on a swap (bindings, svm_bind_priority); without
+ *                         it a swap keeps bindings by index, as for images without names
+ *   SVM_WITH_FIRST        policy `first` (svm_set_priority, svm_bind_priority)
+ *   SVM_WITH_WEIGHTED     policy `weighted` (and svm_weight)
+ *   SVM_WITH_LEARNED      policy `learned` (svm_set_chooser)
+ * A policy left out runs as `uniform` when the options ask for it. Loading checks every image
+ * the same way whatever the features (same checks, same result codes).
  */
 #ifndef SWARMVM_H
 #define SWARMVM_H
@@ -48,11 +63,27 @@
 #define SVM_IMAGE_SOURCES SVM_FLASH_OR_RAM
 #endif
 #ifndef SVM_POPCOUNT_TABLE
-#if defined(__AVR__)
+#if defined(__AVR__) ? !defined(__OPTIMIZE_SIZE__) : !(defined(__arm__) && !defined(__linux__))
 #define SVM_POPCOUNT_TABLE 1
 #else
 #define SVM_POPCOUNT_TABLE 0
 #endif
+#endif
+
+#ifndef SVM_WITH_BINDINGS
+#define SVM_WITH_BINDINGS 1
+#endif
+#ifndef SVM_WITH_NAMES
+#define SVM_WITH_NAMES 1
+#endif
+#ifndef SVM_WITH_FIRST
+#define SVM_WITH_FIRST 1
+#endif
+#ifndef SVM_WITH_WEIGHTED
+#define SVM_WITH_WEIGHTED 1
+#endif
+#ifndef SVM_WITH_LEARNED
+#define SVM_WITH_LEARNED 1
 #endif
 
 #if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > 255
@@ -180,8 +211,12 @@ typedef struct svm_vm {
     const uint8_t *image;       /* the table image (flash or RAM), NULL before a load */
     uint16_t states_at;         /* offsets of the image's sections */
     uint16_t targets_at;
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
     uint16_t probs_at;          /* 0 when the image has no probabilities */
+#endif
+#if SVM_WITH_NAMES
     uint16_t names_at;          /* 0 when the image has no names */
+#endif
     uint8_t num_events;
     uint8_t num_supervisors;
     uint8_t mask_bytes;
@@ -194,15 +229,21 @@ typedef struct svm_vm {
     uint8_t previous[SVM_MASK_BYTES];   /* check values of the previous step (edge mode) */
     uint32_t rng;
     uint32_t seed;
+#if SVM_WITH_BINDINGS
     svm_binding_t *bindings;    /* optional runtime binding table, `bindings_cap` entries */
     uint8_t bindings_cap;
+#endif
     svm_dispatch_fn dispatch;   /* optional compile-time dispatch */
+#if SVM_WITH_LEARNED
     svm_chooser_fn chooser;
     void *chooser_ctx;
+#endif
     svm_violation_fn on_violation;
+#if SVM_WITH_FIRST
     const uint8_t *priority;    /* policy `first`: events to rank first, highest first */
     uint8_t *priority_by_name;  /* the same list when a swap rebinds it (svm_bind_priority) */
     uint8_t priority_count;
+#endif
 } svm_vm_t;
 
 /* ---- life cycle ------------------------------------------------------------------------- */

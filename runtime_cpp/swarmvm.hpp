@@ -112,26 +112,40 @@ private:
     std::string kind_;
 };
 
-// A set of events (E <= 255), bit e for event e. Fixed size so that the per-step mask
-// operations are a few word operations the compiler unrolls.
-class Mask {
+// A set of events, bit e for event e, in Words 64-bit words (events 0 .. 64 Words - 1). Fixed
+// size so that the per-step operations are a few word operations the compiler unrolls: Mask
+// holds any image's events (E <= 255); the step uses BasicMask<1> for images of up to 64.
+template <unsigned Words>
+class BasicMask {
 public:
-    static constexpr unsigned kWords = 4;
+    static constexpr unsigned kWords = Words;
 
+    BasicMask() = default;
+    // The events of `other` below 64 Words (the others must not matter).
+    template <unsigned Other>
+    explicit BasicMask(const BasicMask<Other>& other) {
+        for (unsigned i = 0; i < kWords && i < Other; ++i) words_[i] = other.word(i);
+    }
+
+    std::uint64_t word(unsigned i) const { return words_[i]; }
     bool test(unsigned e) const { return (words_[e >> 6] >> (e & 63u)) & 1u; }
     void set(unsigned e) { words_[e >> 6] |= std::uint64_t{1} << (e & 63u); }
-    bool any() const { return (words_[0] | words_[1] | words_[2] | words_[3]) != 0; }
-    Mask& operator&=(const Mask& other) {
+    bool any() const {
+        std::uint64_t any = 0;
+        for (unsigned i = 0; i < kWords; ++i) any |= words_[i];
+        return any != 0;
+    }
+    BasicMask& operator&=(const BasicMask& other) {
         for (unsigned i = 0; i < kWords; ++i) words_[i] &= other.words_[i];
         return *this;
     }
-    Mask& operator|=(const Mask& other) {
+    BasicMask& operator|=(const BasicMask& other) {
         for (unsigned i = 0; i < kWords; ++i) words_[i] |= other.words_[i];
         return *this;
     }
     // The events of `universe` that are not in this set.
-    Mask complement_in(const Mask& universe) const {
-        Mask out;
+    BasicMask complement_in(const BasicMask& universe) const {
+        BasicMask out;
         for (unsigned i = 0; i < kWords; ++i) out.words_[i] = universe.words_[i] & ~words_[i];
         return out;
     }
@@ -141,6 +155,20 @@ public:
         for (unsigned i = 0; i < (e >> 6); ++i) count += popcount(words_[i]);
         const std::uint64_t low = (std::uint64_t{1} << (e & 63u)) - 1u;
         return count + popcount(words_[e >> 6] & low);
+    }
+    // Number of events in the set.
+    unsigned count() const {
+        unsigned n = 0;
+        for (unsigned i = 0; i < kWords; ++i) n += popcount(words_[i]);
+        return n;
+    }
+    // The n-th event of the set (n from 0, lowest first); the set has more than n.
+    unsigned nth(unsigned n) const {
+        unsigned i = 0;
+        for (unsigned ones; n >= (ones = popcount(words_[i])); ++i) n -= ones;
+        std::uint64_t word = words_[i];
+        for (; n != 0; --n) word &= word - 1u;
+        return i * 64u + lowest_bit(word);
     }
     // Calls f(e) for every event in the set, lowest first (canonical event order).
     template <class F>
@@ -154,20 +182,20 @@ public:
         }
     }
     // Reads `size` little-endian bytes, bit e%8 of byte e/8 standing for event e.
-    static Mask from_bytes(const std::uint8_t* data, std::size_t size) {
-        Mask out;
+    static BasicMask from_bytes(const std::uint8_t* data, std::size_t size) {
+        BasicMask out;
         for (std::size_t i = 0; i < size; ++i) {
             out.words_[i >> 3] |= std::uint64_t{data[i]} << ((i & 7u) * 8u);
         }
         return out;
     }
-    static Mask first(unsigned count) {
-        Mask out;
+    static BasicMask first(unsigned count) {
+        BasicMask out;
         for (unsigned e = 0; e < count; ++e) out.set(e);
         return out;
     }
-    friend Mask operator&(Mask a, const Mask& b) { return a &= b; }
-    friend bool operator==(const Mask& a, const Mask& b) { return a.words_ == b.words_; }
+    friend BasicMask operator&(BasicMask a, const BasicMask& b) { return a &= b; }
+    friend bool operator==(const BasicMask& a, const BasicMask& b) { return a.words_ == b.words_; }
 
 private:
     // Branch-free bit count, inlined (GCC's builtin becomes a libgcc call without -mpopcnt).
@@ -189,6 +217,8 @@ private:
 
     std::array<std::uint64_t, kWords> words_{};
 };
+
+using Mask = BasicMask<4>;
 
 // A parsed table image: the canonical tables every runtime interprets. Events are numbered
 // 0..E-1 in canonical (name) order; targets[state_first[g] + rank] is the successor of global
@@ -576,6 +606,7 @@ public:
     void reset() {
         states_.assign(image_.sup_initial.begin(), image_.sup_initial.end());
         previous_ = Mask();
+        previous_narrow_ = BasicMask<1>();
         violations_ = 0;
         rng_.seed(options_.seed);
     }
@@ -619,13 +650,7 @@ public:
     }
 
     // Controllable events enabled by every supervisor, as a mask.
-    Mask enabled_mask() const {
-        Mask mask = image_.controllable;
-        for (unsigned s = 0; s < image_.num_supervisors; ++s) {
-            mask &= derived_.allowed[image_.sup_first_state[s] + states_[s]];
-        }
-        return mask;
-    }
+    Mask enabled_mask() const { return enabled_in(derived_.wide); }
 
     // Controllable events enabled by every supervisor, in canonical order.
     std::vector<unsigned> enabled() const {
@@ -635,28 +660,10 @@ public:
     }
 
     // One VM step (docs/semantics.md); returns the events that fired, in the order applied.
+    // Images of up to 64 events step with one-word sets.
     const std::vector<unsigned>& step() {
-        Mask current;
-        for (unsigned e : derived_.input_order) {
-            if (poll(e)) current.set(e);
-        }
-        fired_.clear();
-        Mask occurred = current;
-        if (options_.inputs == Inputs::edge) occurred = previous_.complement_in(current);
-        previous_ = current;
-        for (unsigned e : derived_.input_order) {
-            if (occurred.test(e)) {
-                fired_.push_back(e);
-                apply(e);
-            }
-        }
-        if (!fired_.empty() && options_.control == Control::if_quiet) return fired_;
-        const Mask mask = enabled_mask();
-        if (!mask.any()) return fired_;
-        const unsigned choice = select(mask);
-        fired_.push_back(choice);
-        apply(choice);
-        return fired_;
+        return image_.num_events <= 64 ? step_with(derived_.narrow, previous_narrow_)
+                                       : step_with(derived_.wide, previous_);
     }
 
     // The pieces of a step, for the compatibility layer's exact mode (BasicSCT): the check of
@@ -677,10 +684,31 @@ public:
     Rng& rng() { return rng_; }
 
 private:
+    // Largest successor table (states x events) built at load: 4 MB of int32.
+    static constexpr std::size_t kDenseSlots = std::size_t{1} << 20;
+
+    // The sets a step works with, in one representation M (a BasicMask).
+    template <class M>
+    struct Sets {
+        M controllable;
+        M public_inputs, private_inputs;    // uncontrollable events: the two input classes
+        std::vector<M> allowed;             // per global state: defined | not in alphabet
+
+        Sets() = default;
+        template <class Other>
+        explicit Sets(const Sets<Other>& other)
+            : controllable(other.controllable), public_inputs(other.public_inputs), private_inputs(other.private_inputs) {
+            for (const Other& mask : other.allowed) allowed.emplace_back(mask);
+        }
+    };
+
     // Lookup structures derived from an image (and the priority option) once, at load.
     struct Derived {
         std::vector<unsigned> input_order;              // public uncontrollable, then private
-        std::vector<Mask> allowed;                      // per global state: defined | not in alphabet
+        Sets<Mask> wide;
+        Sets<BasicMask<1>> narrow;                      // the same for images of up to 64 events
+        std::vector<std::int32_t> slots;                // per (global state, event): target slot, -1 if
+                                                        // undefined (empty for images above kDenseSlots)
         std::vector<std::vector<unsigned>> event_sups;  // per event: supervisors holding it
         std::vector<unsigned> rank;                     // per event: rank for policy first
     };
@@ -689,17 +717,31 @@ private:
         Derived d;
         const Mask all = Mask::first(image.num_events);
         const Mask uncontrollable = image.controllable.complement_in(all);
-        (uncontrollable & image.public_events).for_each([&](unsigned e) { d.input_order.push_back(e); });
-        image.public_events.complement_in(uncontrollable).for_each([&](unsigned e) { d.input_order.push_back(e); });
-        d.allowed.resize(image.state_defined.size());
+        d.wide.controllable = image.controllable;
+        d.wide.public_inputs = uncontrollable & image.public_events;
+        d.wide.private_inputs = image.public_events.complement_in(uncontrollable);
+        d.wide.public_inputs.for_each([&](unsigned e) { d.input_order.push_back(e); });
+        d.wide.private_inputs.for_each([&](unsigned e) { d.input_order.push_back(e); });
+        // The successor of every state on every event, found once here instead of by a rank
+        // count per supervisor and step (a table of states x events; larger images rank).
+        const std::size_t cells = image.state_defined.size() * image.num_events;
+        if (cells <= kDenseSlots) {
+            d.slots.assign(cells, -1);
+            for (std::size_t g = 0; g < image.state_defined.size(); ++g) {
+                std::int32_t slot = image.state_first[g];
+                image.state_defined[g].for_each([&](unsigned e) { d.slots[g * image.num_events + e] = slot++; });
+            }
+        }
+        d.wide.allowed.resize(image.state_defined.size());
         for (unsigned s = 0; s < image.num_supervisors; ++s) {
             Mask outside = image.sup_alphabet[s].complement_in(all);
             for (unsigned q = 0; q < image.sup_num_states[s]; ++q) {
                 const unsigned g = image.sup_first_state[s] + q;
-                d.allowed[g] = image.state_defined[g];
-                d.allowed[g] |= outside;
+                d.wide.allowed[g] = image.state_defined[g];
+                d.wide.allowed[g] |= outside;
             }
         }
+        if (image.num_events <= 64) d.narrow = Sets<BasicMask<1>>(d.wide);
         d.event_sups.resize(image.num_events);
         for (unsigned s = 0; s < image.num_supervisors; ++s) {
             image.sup_alphabet[s].for_each([&](unsigned e) {
@@ -721,6 +763,40 @@ private:
         return d;
     }
 
+    template <class M>
+    M enabled_in(const Sets<M>& sets) const {
+        M mask = sets.controllable;
+        for (unsigned s = 0; s < image_.num_supervisors; ++s) {
+            mask &= sets.allowed[image_.sup_first_state[s] + states_[s]];
+        }
+        return mask;
+    }
+
+    template <class M>
+    const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
+        M current;
+        for (unsigned e : derived_.input_order) {
+            if (poll(e)) current.set(e);
+        }
+        fired_.clear();     // after the checks: one that throws leaves the last step's events
+        M occurred = current;
+        if (options_.inputs == Inputs::edge) occurred = previous.complement_in(current);
+        previous = current;
+        const auto fire_input = [this](unsigned e) {
+            fired_.push_back(e);
+            apply(e);
+        };
+        (occurred & sets.public_inputs).for_each(fire_input);     // input order: public first
+        (occurred & sets.private_inputs).for_each(fire_input);
+        if (!fired_.empty() && options_.control == Control::if_quiet) return fired_;
+        const M mask = enabled_in(sets);
+        if (!mask.any()) return fired_;
+        const unsigned choice = select(mask);
+        fired_.push_back(choice);
+        apply(choice);
+        return fired_;
+    }
+
     void require(unsigned event) const {
         if (event >= image_.num_events) {
             throw UnknownEvent("event index " + std::to_string(event) + " out of range (0.." +
@@ -731,6 +807,7 @@ private:
     // Position in the target section of supervisor s's successor on e, or -1 if undefined.
     long successor_slot(unsigned s, unsigned e) const {
         const unsigned g = image_.sup_first_state[s] + states_[s];
+        if (!derived_.slots.empty()) return derived_.slots[static_cast<std::size_t>(g) * image_.num_events + e];
         const Mask& defined = image_.state_defined[g];
         if (!defined.test(e)) return -1;
         return static_cast<long>(image_.state_first[g] + defined.count_below(e));
@@ -776,8 +853,13 @@ private:
         return w;
     }
 
-    unsigned select(const Mask& mask) {
-        std::array<unsigned, 256> en;
+    template <class M>
+    unsigned select(const M& mask) {
+        if (options_.policy == Policy::uniform) {
+            const unsigned n = mask.count();
+            return mask.nth(n == 1 ? 0 : scale_below(rng_.next(), n));
+        }
+        std::array<unsigned, 256> en{};
         unsigned n = 0;
         mask.for_each([&](unsigned e) { en[n++] = e; });
         if (options_.policy == Policy::first) {
@@ -788,7 +870,6 @@ private:
             return best;
         }
         if (n == 1) return en[0];
-        if (options_.policy == Policy::uniform) return en[scale_below(rng_.next(), n)];
         std::array<std::uint32_t, 256> w;
         std::uint32_t total = 0;
         for (unsigned i = 0; i < n; ++i) {
@@ -813,7 +894,8 @@ private:
     std::vector<void*> data_;
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;
-    Mask previous_;
+    Mask previous_;                   // check values of the previous step (edge), for E > 64
+    BasicMask<1> previous_narrow_;    // ... for E <= 64
     std::uint32_t violations_ = 0;
     std::vector<unsigned> fired_;
 };

@@ -12,9 +12,9 @@
 
 #include <stdio.h>
 
-void svm_harness_putc(char c)
+void svm_harness_write(const char *text, uint16_t length)
 {
-    (void)putchar(c);
+    (void)fwrite(text, 1, length, stdout);
 }
 
 #ifdef SVM_HARNESS_CYCLES

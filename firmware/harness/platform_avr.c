@@ -17,10 +17,12 @@
 #include <avr/pgmspace.h>
 #include <avr/sleep.h>
 
-void svm_harness_putc(char c)
+void svm_harness_write(const char *text, uint16_t length)
 {
-    loop_until_bit_is_set(UCSR0A, UDRE0);
-    UDR0 = (uint8_t)c;
+    for (; length != 0u; length--) {
+        loop_until_bit_is_set(UCSR0A, UDRE0);
+        UDR0 = (uint8_t)*text++;
+    }
 }
 
 #ifdef SVM_HARNESS_EEPROM

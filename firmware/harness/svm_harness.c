@@ -66,14 +66,44 @@ static void bound_action(void *data)
 }
 #endif
 
+/* Output is collected here and handed to the platform when full or at a line's end (small on
+ * AVR, whose RAM decides how complete the loaded pass is). */
+#if defined(__AVR__)
+#define OUT_BYTES 16u
+#else
+#define OUT_BYTES 128u
+#endif
+static char out[OUT_BYTES];
+static uint16_t out_used;
+
+static void flush_out(void)
+{
+    svm_harness_write(out, out_used);
+    out_used = 0;
+}
+
+static void put_char(char c)
+{
+    if (out_used == OUT_BYTES) {
+        flush_out();
+    }
+    out[out_used++] = c;
+}
+
+static void end_line(void)
+{
+    put_char('\n');
+    flush_out();
+}
+
 static void put_str(const char *s)
 {
-    svm_put_text(svm_harness_putc, s);
+    svm_put_text(put_char, s);
 }
 
 static void put_uint(uint32_t value)
 {
-    svm_put_decimal(svm_harness_putc, value);
+    svm_put_decimal(put_char, value);
 }
 
 /* "@error <code>" (or another tag) and the end of the line: the harness's report of a load. */
@@ -81,12 +111,12 @@ static void put_result(const char *tag, int result)
 {
     put_str(tag);
     put_uint((uint32_t)result);
-    svm_harness_putc('\n');
+    end_line();
 }
 
 static void put_trace_line(uint32_t step)
 {
-    svm_put_trace_line(svm_harness_putc, &vm, step, fired, num_fired);
+    svm_put_trace_line(put_char, &vm, step, fired, num_fired);
 }
 
 static uint32_t flash_u32(const uint8_t *p)
@@ -106,11 +136,11 @@ static void run_all(uint8_t pass)
                               (uint32_t)SVM_FLASH_BYTE(spec + 1) * SVM_CASES_STEPS * SVM_CASES_MASK_BYTES;
         svm_set_options(&vm, SVM_FLASH_BYTE(spec), flash_u32(spec + 2));
         svm_reset(&vm);
-        svm_harness_putc('@');
+        put_char('@');
         put_uint(pass);
-        svm_harness_putc(' ');
+        put_char(' ');
         put_uint(run);
-        svm_harness_putc('\n');
+        end_line();
         for (step = 0; step < SVM_CASES_STEPS; step++) {
             for (i = 0; i < SVM_CASES_MASK_BYTES; i++) {
                 row[i] = SVM_FLASH_BYTE(rows + step * SVM_CASES_MASK_BYTES + i);
@@ -130,7 +160,7 @@ static void run_all(uint8_t pass)
             (void)svm_step(&vm);
             put_trace_line(step + 1u);
 #endif
-            svm_harness_putc('\n');
+            end_line();
         }
     }
 }
@@ -188,7 +218,8 @@ int svm_harness_run(void)
     result = svm_load_P(&vm, svm_case_image, SVM_CASES_IMAGE_LEN);
     if (result != SVM_OK) {
         put_result("@error ", result);
-        put_str("@end\n");
+        put_str("@end");
+        end_line();
         return 1;
     }
     run_all(0);
@@ -198,6 +229,7 @@ int svm_harness_run(void)
 #ifdef SVM_HARNESS_EEPROM
     run_from_eeprom();
 #endif
-    put_str("@end\n");
+    put_str("@end");
+    end_line();
     return 0;
 }

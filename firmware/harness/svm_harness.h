@@ -24,8 +24,9 @@
 /* Runs every run of the batch, both passes; returns 0 when the image loaded. */
 int svm_harness_run(void);
 
-/* Platform: write one character of output. */
-void svm_harness_putc(char c);
+/* Platform: write `length` characters of output (part of a line, or up to its end). The harness
+ * collects them a line (or a buffer) at a time: one call, not one per character. */
+void svm_harness_write(const char *text, uint16_t length);
 
 #ifdef SVM_HARNESS_EEPROM
 /* Platform: copy a program-memory image into EEPROM; returns its EEPROM address. */

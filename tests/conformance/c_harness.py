@@ -16,8 +16,6 @@ from swarmvm.runtime import RUNTIME_C
 from checkout import FIRMWARE
 
 HARNESS = FIRMWARE / "harness"
-CORE_SOURCES = [RUNTIME_C / "swarmvm.c"]
-HARNESS_SOURCES = [HARNESS / "svm_harness.c"]
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 KILOBOT_FLAGS = ["-mmcu=atmega328p", "-O3", "-funsigned-char", "-funsigned-bitfields",
                  "-fpack-struct", "-fshort-enums", "-DF_CPU=8000000"]
@@ -108,19 +106,34 @@ def _write_header(batch, outdir, loaded=LOADED_FULL):
     return outdir
 
 
-def _includes(outdir):
-    return ["-I", str(outdir), "-I", str(RUNTIME_C), "-I", str(HARNESS)]
+def tree(root=None):
+    """(runtime_c, harness) folders of a checkout: this one, or ``root`` holding another
+    version's ``runtime_c/`` and ``firmware/harness/`` (the speed benchmarks' baseline)."""
+    if root is None:
+        return RUNTIME_C, HARNESS
+    return Path(root) / "runtime_c", Path(root) / "firmware" / "harness"
 
 
-def build_host(batch, outdir, compiler="gcc", exact_limits=True, defines=()):
+def _includes(outdir, root=None):
+    runtime, harness = tree(root)
+    return ["-I", str(outdir), "-I", str(runtime), "-I", str(harness)]
+
+
+def sources(platform, root=None):
+    """The harness program's C sources: the VM core, the common harness and ``platform``."""
+    runtime, harness = tree(root)
+    return [runtime / "swarmvm.c", harness / "svm_harness.c", harness / platform]
+
+
+def build_host(batch, outdir, compiler="gcc", exact_limits=True, defines=(), root=None):
     """A native harness program for the batch; returns its path. With ``exact_limits`` False
     the runtime keeps its default limits (or those of ``defines``), so the step runs its
-    generic (any mask width) path."""
+    generic (any mask width) path. ``root``: another version's sources (``tree``)."""
     outdir = _write_header(batch, outdir)
     exe = outdir / ("harness_%s" % batch.name)
-    sources = CORE_SOURCES + HARNESS_SOURCES + [HARNESS / "platform_host.c"]
-    subprocess.run([compiler, *WARNINGS, "-O2", *(limits(batch) if exact_limits else defines), *_includes(outdir),
-                    *map(str, sources), "-o", str(exe)], check=True, capture_output=True, text=True)
+    subprocess.run([compiler, *WARNINGS, "-O2", *(limits(batch) if exact_limits else defines), *_includes(outdir, root),
+                    *map(str, sources("platform_host.c", root)), "-o", str(exe)],
+                   check=True, capture_output=True, text=True)
     return exe
 
 
@@ -163,7 +176,7 @@ def deepest_frame(outdir):
     return max(int(line.split("\t")[1]) for su in Path(outdir).glob("*.su") for line in su.read_text().splitlines())
 
 
-def build_avr(batch, outdir, cycles=False, extra=(), loaded_modes=None, eeprom=False):
+def build_avr(batch, outdir, cycles=False, extra=(), loaded_modes=None, eeprom=False, root=None, flags=None):
     """An ATmega328P harness ELF built with the official Kilobot flags. The loaded pass is as
     complete as 2 KB of SRAM allows with room left for the stack (or the first of
     ``loaded_modes`` that fits): a mode fits when its static RAM, its deepest stack frame and
@@ -171,16 +184,18 @@ def build_avr(batch, outdir, cycles=False, extra=(), loaded_modes=None, eeprom=F
     link) falls back to the next, down to the image in flash only. With ``eeprom`` the image
     is also run from EEPROM (pass 2, SVM_IMAGE_SOURCES = SVM_ANY_SOURCE). Returns (elf,
     loaded); AvrRamError when no mode fits (a model too wide for the VM on the AVR: at 255
-    events the step alone needs 2 KB of stack), rather than a program that overruns its stack."""
-    sources = CORE_SOURCES + HARNESS_SOURCES + [HARNESS / "platform_avr.c"]
+    events the step alone needs 2 KB of stack), rather than a program that overruns its stack.
+    ``root``: another version's sources (``tree``); ``flags``: compiler flags instead of
+    KILOBOT_FLAGS."""
     defines = ["-DSVM_HARNESS_CYCLES"] if cycles else []
     if eeprom:
         defines += ["-DSVM_HARNESS_EEPROM", "-DSVM_IMAGE_SOURCES=SVM_ANY_SOURCE"]
     for loaded in loaded_modes or (LOADED_FULL, LOADED_DISPATCH, LOADED_NONE):
         out = _write_header(batch, outdir, loaded)
         elf = out / ("harness_%s.elf" % batch.name)
-        result = subprocess.run(["avr-gcc", *WARNINGS, *KILOBOT_FLAGS, *defines, *extra, *limits(batch),
-                                 "-fstack-usage", *_includes(out), *map(str, sources), "-o", str(elf)],
+        result = subprocess.run(["avr-gcc", *WARNINGS, *(flags or KILOBOT_FLAGS), *defines, *extra, *limits(batch),
+                                 "-fstack-usage", *_includes(out, root), *map(str, sources("platform_avr.c", root)),
+                                 "-o", str(elf)],
                                 capture_output=True, text=True, cwd=out)
         if _link_overflows_ram(result):
             continue

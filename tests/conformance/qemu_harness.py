@@ -29,14 +29,17 @@ def compile_m4(sources, elf, defines=(), includes=()):
     return elf
 
 
-def build_qemu(batch, outdir, cycles=False):
-    """One harness ELF for the batch, image both compiled in and loaded (RAM is plentiful)."""
+def build_qemu(batch, outdir, cycles=False, root=None, extra=(), loaded=c_harness.LOADED_FULL):
+    """One harness ELF for the batch, image both compiled in and loaded (RAM is plentiful).
+    ``root``: another version's runtime and harness (c_harness.tree), e.g. the baseline's;
+    ``extra``: more compiler flags (-D...); ``loaded``: the loaded pass (c_harness.LOADED_*)."""
     outdir = Path(outdir)
-    c_harness._write_header(batch, outdir, c_harness.LOADED_FULL)
-    sources = c_harness.CORE_SOURCES + c_harness.HARNESS_SOURCES + [CAPBOT / "platform_qemu.c"]
-    defines = [*c_harness.limits(batch), *(["-DSVM_HARNESS_CYCLES"] if cycles else [])]
-    includes = [outdir, c_harness.RUNTIME_C, c_harness.HARNESS]
-    return compile_m4(sources, outdir / ("harness_%s.elf" % batch.name), defines, includes)
+    c_harness._write_header(batch, outdir, loaded)
+    runtime, harness = c_harness.tree(root)
+    platform = (Path(root) / "firmware" / "capbot" if root is not None else CAPBOT) / "platform_qemu.c"
+    sources = [runtime / "swarmvm.c", harness / "svm_harness.c", platform]
+    defines = [*c_harness.limits(batch), *(["-DSVM_HARNESS_CYCLES"] if cycles else []), *extra]
+    return compile_m4(sources, outdir / ("harness_%s.elf" % batch.name), defines, [outdir, runtime, harness])
 
 
 def run(elf, extra=(), icount=False, timeout=QEMU_TIMEOUT):

@@ -44,7 +44,7 @@ def elf(tmp_path_factory):
     subprocess.run(["swarmvm", "gen", str(EXAMPLE), "--target", "capbot", "-o", str(app), "--name", "energy_worker"],
                    check=True, capture_output=True, text=True)
     sources = [s for s in sorted((app / "src").glob("*.c")) if s.name != "main.c"]
-    sources += [PAGE_HARNESS / "page_harness.c", qemu_harness.CAPBOT / "capbot_qemu.c", *c_harness.HARNESS_SOURCES]
+    sources += [PAGE_HARNESS / "page_harness.c", qemu_harness.CAPBOT / "capbot_qemu.c", c_harness.HARNESS / "svm_harness.c"]
     defines = ["@%s" % PAGE_LIMITS, "-DSVM_APP=energy_worker", '-DSVM_APP_HEADER="energy_worker_tables.h"']
     includes = [PAGE_HARNESS, app / "src", qemu_harness.CAPBOT, c_harness.HARNESS]
     return qemu_harness.compile_m4(sources, root / "page_harness.elf", defines, includes)
