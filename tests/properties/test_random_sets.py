@@ -54,26 +54,28 @@ def cpp_harness(tmp_path_factory):
 
 @st.composite
 def set_with_runs(draw):
-    """A supervisor set, two scripts of one length and a few runs over them."""
+    """A supervisor set, two scripts of one length, a few runs over them, and whether the C VM is
+    built with the set's exact limits (its mask width's unrolled step) or the default ones (the
+    generic step)."""
     supervisor_set = draw(supervisor_sets())
     steps = draw(st.integers(1, 12))
     first, second = draw(scripts(supervisor_set, steps, steps)), draw(scripts(supervisor_set, steps, steps))
     runs = draw(st.lists(RUN_OPTIONS.map(lambda o: Run(o["inputs"], o["control"], o["policy"], o["seed"], 0)),
                          min_size=1, max_size=4))
     runs = [Run(r.inputs, r.control, r.policy, r.seed, k % 2) for k, r in enumerate(runs)]
-    return supervisor_set, (first, second), tuple(runs)
+    return supervisor_set, (first, second), tuple(runs), draw(st.booleans())
 
 
 @pytest.mark.slow
 @settings(max_examples=settings.default.max_examples * 3)
 @given(set_with_runs())
 def test_python_c_and_cpp_print_the_same_trace(cpp_harness, drawn):
-    supervisor_set, named_scripts, runs = drawn
+    supervisor_set, named_scripts, runs, exact_limits = drawn
     with tempfile.TemporaryDirectory() as folder:
         compiled = compile_inputs([str(write_set(folder, supervisor_set))])
         events = list(compiled.model.events)
         batch = Batch("random", folder, compiled.image, tuple(as_indices(s, events) for s in named_scripts), runs)
-        exe = c_harness.build_host(batch, Path(folder) / "c")
+        exe = c_harness.build_host(batch, Path(folder) / "c", exact_limits=exact_limits)
         traces, info = c_harness.parse(c_harness.run_host(exe))
         assert mismatches(batch, traces, info, passes=(0, 1)) == []
         image, runs_file = Path(folder) / "model.svm", Path(folder) / "model.runs"
