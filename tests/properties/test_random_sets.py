@@ -115,8 +115,11 @@ def replay_on_the_file(path, lines):
 
 @st.composite
 def set_script_and_options(draw):
+    """A supervisor set, its script (drawn here, or `swarmvm script`'s: steps, seed, density) and options."""
     supervisor_set = draw(supervisor_sets())
-    return supervisor_set, draw(scripts(supervisor_set, max_steps=40)), draw(RUN_OPTIONS)
+    script = draw(scripts(supervisor_set, max_steps=40) |
+                  st.tuples(st.integers(1, 40), st.integers(0, 2 ** 32 - 1), st.floats(0, 1)))
+    return supervisor_set, script, draw(RUN_OPTIONS)
 
 
 @settings(max_examples=settings.default.max_examples * 10)
@@ -125,12 +128,16 @@ def test_every_trace_is_accepted_by_every_local_supervisor(drawn):
     supervisor_set, script, options = drawn
     with tempfile.TemporaryDirectory() as folder:
         path = write_set(folder, supervisor_set)
-        compiled = compile_inputs([str(path)])
         script_path = Path(folder) / "events.txt"
-        script_path.write_text(format_script(as_indices(script, list(compiled.model.events)), compiled.model.events))
+        if isinstance(script, tuple):
+            text, steps = api.make_script([str(path)], *script), script[0]
+        else:
+            events = compile_inputs([str(path)]).model.events
+            text, steps = format_script(as_indices(script, list(events)), events), len(script)
+        script_path.write_text(text)
         lines = list(api.trace([str(path)], str(script_path), seed=options["seed"], input_mode=options["inputs"],
                                control=options["control"], policy=options["policy"]))
-        assert len(lines) == len(script)
+        assert len(lines) == steps
         assert replay_on_the_file(path, lines) == []
 
 
