@@ -149,7 +149,9 @@ RUN_OPTIONS = st.fixed_dictionaries({
 })
 
 # Model names for --name: ordinary identifiers (most often), the C library's, the runtimes' and the
-# targets' own identifiers, a few keywords (refused), names around the longest allowed.
+# targets' own identifiers, a few keywords (refused), any text (non-ASCII, spaces: made identifiers),
+# names around the longest allowed.
 MODEL_NAMES = st.one_of(st.from_regex(r"[a-z][a-z0-9_]{0,15}", fullmatch=True),
                         st.sampled_from(OWN_NAMES + ("int", "class", "lambda", "None")),
+                        st.text(min_size=1, max_size=12),
                         st.text(string.ascii_lowercase, min_size=230, max_size=MAX_NAME))
