@@ -212,7 +212,7 @@ def test_every_target_has_a_build():
 @pytest.mark.slow
 @given(supervisor_sets(max_events=6, max_supervisors=3, max_states=3), MODEL_NAMES)
 # Found: at one event, avr-gcc -Os (the streaming Kilobot build) took the image swap's name map
-# for uninitialised (-Werror=maybe-uninitialized in runtime_c/swarmvm.c).
+# for uninitialised (-Werror=maybe-uninitialized in runtime_c/swarmvm.c; the map is zeroed now).
 @example(SupervisorSet(("auto",), (0,), (0,), (frozenset({"auto"}),), (((),),), (0,)), "message")
 # Found: the ARGoS image's namespace was the model name, and a model named like a C library
 # identifier (uint8_t, printf, time) redeclared it; it is <model>_image now.
