@@ -10,8 +10,13 @@ is written:
   ``_`` of the receive side (``EV_x`` sends "x", ``EV__x`` receives it). Kilobot messages carry
   its first 9 characters, ARGoS range-and-bearing packets a 16-bit :func:`message_code`, Pi-puck
   broadcasts the whole name;
-- the model name prefixes generated files, types and functions, so it must be an ASCII
-  identifier that no language or runtime keeps for itself."""
+- the model name prefixes generated files, types, namespaces and functions and never stands
+  alone as an identifier (the ARGoS image is ``<model>_image::kImage``), so no name a C or C++
+  library declares can clash with it; it must be an ASCII identifier that no language or
+  runtime keeps for itself.
+
+A rule one target only needs (the Kilobot's 9-byte messages) refuses the model for that target,
+naming it (swarmvm.targets.generate)."""
 
 import keyword
 import re
@@ -35,20 +40,31 @@ static_assert static_cast struct switch template this thread_local throw true tr
 typename union unsigned using virtual void volatile wchar_t while xor xor_eq
 NULL EOF main errno assert offsetof bool true false
 """.split())
-# Prefixes the runtimes own: a model named like them would redefine runtime symbols.
+# The longest file name gen writes is <model>_controller.cpp.new (a drifted ARGoS controller's fresh
+# skeleton); file systems allow 255 bytes.
+MAX_MODEL_NAME = 255 - len("_controller.cpp.new")
+# Prefixes the runtimes own: a model named like them would redefine runtime symbols. Compared in
+# any case (the runtimes have svm_* functions and SVM_* macros), except SCT: the C compatibility
+# layer's SCT_* functions clash with a model SCT only (SCT_vm), and the Python SCT names its own "sct".
 _RUNTIME_PREFIXES = ("svm", "swarmvm", "kilo")
+_CASE_SENSITIVE_PREFIXES = ("SCT",)
 
 
 def model_identifier(stem: str, source: str) -> str:
     """The model name as used in generated identifiers and file names: ``stem`` with every
     character outside [A-Za-z0-9_] made ``_`` and ``m_`` before a leading digit. InputError when
-    the result is a keyword of C, C++ or Python or starts like the runtimes' own symbols."""
+    the result is longer than MAX_MODEL_NAME, a keyword of C, C++ or Python or starts like the
+    runtimes' own symbols."""
     name = re.sub(r"[^A-Za-z0-9_]", "_", stem)
     name = "m_" + name if name[:1].isdigit() else name
     lowered = name.lower()
+    if len(name) > MAX_MODEL_NAME:
+        raise InputError(source, "--name", "model name of %d characters: at most %d, so that the generated file names "
+                         "fit 255 bytes: give a shorter one with --name" % (len(name), MAX_MODEL_NAME))
     if not name or name in _C_CPP_KEYWORDS or keyword.iskeyword(name):
         raise InputError(source, "--name", "model name %r is reserved in C, C++ or Python: give another with --name" % name)
-    if any(lowered == p or lowered.startswith(p + "_") for p in _RUNTIME_PREFIXES):
+    if any(lowered == p or lowered.startswith(p + "_") for p in _RUNTIME_PREFIXES) or \
+            any(name == p or name.startswith(p + "_") for p in _CASE_SENSITIVE_PREFIXES):
         raise InputError(source, "--name", "model name %r collides with the runtime's own %s_* symbols: "
                          "give another with --name" % (name, name.split("_")[0]))
     return name

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from . import __version__, kilobot
+from .errors import InputError
 from .render import context, render
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
 
@@ -100,7 +101,10 @@ def generate(compiled, target, **options):
     spec = TARGETS[target]
     if spec.keeps_order:
         compiled = dataclasses.replace(compiled, image=compiled.ordered_image)
-    extra = spec.prepare(compiled) if spec.prepare else {}
+    try:
+        extra = spec.prepare(compiled) if spec.prepare else {}
+    except InputError as error:         # refused for this target only: say which
+        raise InputError(error.file, error.key, "target %s: %s" % (target, error.message), error.where)
     values = context(compiled, target=target, **dict(options, **extra))
     templates, copies = spec.templates, spec.copies
     if options.get("learned_checks"):

@@ -64,11 +64,43 @@ def reference(b, run):
     return vm.replay(machine, b.scripts[run.script])
 
 
-def one_supervisor_yaml(events, controllable, sup_data):
-    """A supervisor.yaml of one local supervisor whose alphabet is every event, all private:
-    ``events`` bare names, ``controllable`` 0/1 per event, ``sup_data`` its flat block (as text)."""
-    n = len(events)
-    return ("num_events: %d\nnum_supervisors: 1\nevents: [ %s ]\nev_controllable: [ %s ]\nev_shared: [ %s ]\n"
-            "sup_events: [ [ %s ] ]\nsup_init_state: [ 0 ]\nsup_current_state: [ 0 ]\nsup_data_pos: [ 0 ]\n"
-            "sup_data: [ %s ]\n" % (n, ",".join("EV_" + e for e in events), ",".join(map(str, controllable)),
-                                    ",".join(["0"] * n), ",".join(["1"] * n), sup_data))
+def _blocks(per_supervisor):
+    """Nadzoru's flat layout: each supervisor's states' entries joined, and where each block starts."""
+    blocks = [[entry for state in sup for entry in state] for sup in per_supervisor]
+    return ",".join(",".join(b) for b in blocks if b), [sum(len(b) for b in blocks[:s]) for s in range(len(blocks))]
+
+
+def supervisor_yaml(events, controllable, alphabets, states, initial=None, public=None, probabilities=None):
+    """A supervisor.yaml in Nadzoru 2's layout, the one model writer of the tests. ``events``: bare
+    names in file order; ``controllable``: 0/1 per event; ``alphabets``: per local supervisor, the
+    names of its events; ``states``: per local supervisor, per state (in file numbering) its
+    transitions as (event name, target state) in file order; ``initial``: per supervisor its initial
+    state (default 0); ``public``: 0/1 per event, written as ``ev_shared`` (default: no such key);
+    ``probabilities``: per supervisor, per state, the probabilities (text) of its controllable
+    transitions in file order, written as ``sup_data_prob`` (default: none)."""
+    initial = list(initial) if initial is not None else [0] * len(states)
+    entries = [[[str(len(state))] + [x for e, t in state for x in ("EV_" + e, str(t >> 8), str(t & 0xFF))]
+                for state in sup] for sup in states]
+    data, positions = _blocks(entries)
+
+    def flow(values):
+        return "[ %s ]" % ",".join(map(str, values))
+
+    lines = ["num_events: %d" % len(events), "num_supervisors: %d" % len(states),
+             "events: " + flow("EV_" + e for e in events), "ev_controllable: " + flow(int(c) for c in controllable)]
+    if public is not None:
+        lines.append("ev_shared: " + flow(int(p) for p in public))
+    lines += ["sup_events: [ %s ]" % ",".join(flow(int(e in alphabet) for e in events) for alphabet in alphabets),
+              "sup_init_state: " + flow(initial), "sup_current_state: " + flow(initial),
+              "sup_data_pos: " + flow(positions), "sup_data: [ %s ]" % data]
+    if probabilities is not None:
+        data, positions = _blocks([[[str(len(state))] + list(state) for state in sup] for sup in probabilities])
+        lines += ["sup_data_prob_pos: " + flow(positions), "sup_data_prob: [ %s ]" % data]
+    return "\n".join(lines) + "\n"
+
+
+def one_supervisor_yaml(events, controllable, state_transitions):
+    """A supervisor.yaml of one local supervisor of one state whose alphabet is every event, all
+    private: ``state_transitions`` its self-loops' event names."""
+    return supervisor_yaml(events, controllable, [set(events)], [[[(e, 0) for e in state_transitions]]],
+                           public=[0] * len(events))

@@ -17,7 +17,7 @@ import pytest
 from checkout import FIRMWARE
 from conformance import c_harness
 from conformance._c_compare import mismatches
-from conformance.cases import SUPERVISORS, Batch, Run, batch, one_supervisor_yaml
+from conformance.cases import SUPERVISORS, Batch, Run, batch, supervisor_yaml
 from conformance.test_widest_model import MODEL as WIDEST
 from swarmvm.pipeline import compile_inputs
 
@@ -58,9 +58,8 @@ def test_avr_kilobot_build_flags_trace_equals_reference(tmp_path):
 def ring_yaml(states):
     """One supervisor: a ring of ``states`` states under one controllable event ``go`` and an
     uncontrollable self-loop ``tick``: an image of about 7 bytes a state."""
-    data = ",".join("2,EV_go,%d,%d,EV_tick,%d,%d" % (*divmod((s + 1) % states, 256), *divmod(s, 256))
-                    for s in range(states))
-    return one_supervisor_yaml(["go", "tick"], [1, 0], data)
+    ring = [[("go", (s + 1) % states), ("tick", s)] for s in range(states)]
+    return supervisor_yaml(["go", "tick"], [1, 0], [{"go", "tick"}], [ring], public=[0, 0])
 
 
 def test_an_image_over_the_ram_copy_runs_from_flash(tmp_path):

@@ -7,7 +7,7 @@ from conformance.cases import Batch, Run, one_supervisor_yaml
 from swarmvm.pipeline import compile_inputs
 
 LONG = "x" * 255
-MODEL = one_supervisor_yaml([LONG, "u"], [1, 0], "2,EV_%s,0,0,EV_u,0,0" % LONG)
+MODEL = one_supervisor_yaml([LONG, "u"], [1, 0], [LONG, "u"])
 
 
 def test_a_255_character_name_prints_whole(tmp_path):

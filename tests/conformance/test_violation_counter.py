@@ -10,7 +10,7 @@ from swarmvm.pipeline import compile_inputs
 from swarmvm.runtime import RUNTIME_CPP
 
 # EV_u is in the supervisor's alphabet but possible in no state: every step it is seen is a violation.
-NEVER_POSSIBLE = one_supervisor_yaml(["c", "u"], [1, 0], "1,EV_c,0,0")
+NEVER_POSSIBLE = one_supervisor_yaml(["c", "u"], [1, 0], ["c"])
 STEPS = 70000
 
 

@@ -7,7 +7,7 @@ from conformance.cases import Batch, Run, one_supervisor_yaml
 from swarmvm.pipeline import compile_inputs
 
 EVENTS = ["c"] + ["u%d" % i for i in range(254)]
-MODEL = one_supervisor_yaml(EVENTS, [1] + [0] * 254, "255," + ",".join("EV_%s,0,0" % e for e in EVENTS))
+MODEL = one_supervisor_yaml(EVENTS, [1] + [0] * 254, EVENTS)
 
 
 def test_255_events_on_the_host(tmp_path):

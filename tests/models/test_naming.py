@@ -7,7 +7,8 @@ import subprocess
 import pytest
 
 from swarmvm.errors import InputError
-from swarmvm.naming import callback_stem, message_code, message_name, model_identifier
+from swarmvm.naming import MAX_MODEL_NAME, callback_stem, message_code, message_name, model_identifier
+from swarmvm.targets import TARGETS
 
 # Two local events "x" and "_x"/"received_x" clash once "_x" is spelled received_x.
 CLASH = """
@@ -32,15 +33,41 @@ def test_callback_stem_and_message_rules():
 
 
 @pytest.mark.parametrize("stem,expected", [("energy worker", "energy_worker"), ("2robots", "m_2robots"),
-                                           ("ouvrière", "ouvri_re")])
+                                           ("ouvrière", "ouvri_re"), ("sct", "sct"), ("n" * MAX_MODEL_NAME,) * 2])
 def test_model_names_become_ascii_identifiers(stem, expected):
     assert model_identifier(stem, "f.yaml") == expected
 
 
-@pytest.mark.parametrize("stem", ["svm", "svm_sct", "swarmvm", "class", "NULL", "int", "kilo_main", "lambda"])
+# SCT: the C compatibility layer's SCT_* functions (SCT_vm clashed with a Kilobot model's <model>_vm);
+# found by the property tests (tests/properties), as was the length limit.
+@pytest.mark.parametrize("stem", ["svm", "svm_sct", "swarmvm", "class", "NULL", "int", "kilo_main", "lambda", "SCT",
+                                  "SCT_model", "n" * (MAX_MODEL_NAME + 1)])
 def test_reserved_model_names_are_refused(stem):
     with pytest.raises(InputError, match="--name"):
         model_identifier(stem, "f.yaml")
+
+
+def test_the_longest_model_name_gives_file_names_that_fit():
+    """MAX_MODEL_NAME is what the longest generated file name (a kept file's fresh skeleton,
+    <file>.new) leaves of 255 bytes."""
+    name = model_identifier("n" * MAX_MODEL_NAME, "f.yaml")
+    longest = max(len(out.format(name=name).rsplit("/", 1)[-1]) + (len(".new") if keep else 0)
+                  for spec in TARGETS.values() for _, out, keep in spec.templates + spec.learned_templates)
+    assert longest == 255
+
+
+def test_a_rule_of_one_target_refuses_for_that_target_only_and_names_it(tmp_path):
+    """Two public events whose messages share their first 9 characters are one Kilobot message:
+    gen --target kilobot refuses them in one line naming the target; gen --target c accepts."""
+    model = tmp_path / "m.yaml"
+    model.write_text(CLASH.replace("EV__x", "EV_longname_a").replace("EV_received_x", "EV_longname_b")
+                     .replace("ev_shared: [ 1,1,0 ]", "ev_shared: [ 1,1,1 ]"))
+    refused = subprocess.run(["swarmvm", "gen", str(model), "--target", "kilobot", "-o", str(tmp_path / "k")],
+                             capture_output=True, text=True)
+    assert refused.returncode == 2 and not (tmp_path / "k").exists()
+    assert refused.stderr.count("\n") == 1 and ": target kilobot: " in refused.stderr, refused.stderr
+    subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(tmp_path / "c")], check=True,
+                   capture_output=True)
 
 
 def test_colliding_callbacks_are_refused_naming_both_events(tmp_path):
