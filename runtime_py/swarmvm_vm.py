@@ -295,7 +295,8 @@ class VM:
                 if probs is not None:
                     weights.append(dict(zip(events, probs[base:base + len(events)])))
                 for e, target in zip(events, successors):
-                    columns[e][local] = target
+                    if e in columns:    # a transition on an event outside its alphabet is never taken
+                        columns[e][local] = target
             self.weights.append(weights)
             for e, column in columns.items():
                 pairs_of[e].append((sup, column))
