@@ -13,6 +13,7 @@ robot too.
 import binascii
 import enum
 import itertools
+import operator
 import struct
 from typing import Dict, List, NamedTuple, Optional
 
@@ -182,18 +183,19 @@ def _numbers(raw: bytes, pos: int, count: int, width: int) -> List[int]:
 
 
 def _records(raw: bytes, pos: int, count: int, mask_bytes: int, fields: struct.Struct) -> tuple:
-    """``count`` records of a mask then ``fields`` (one-character codes) at ``pos``, decoded in
-    one pass: (the masks as ints, then each field's values), each a list, and the position
-    after them."""
-    record = _RECORDS.get((mask_bytes, fields))
-    if record is None:
-        record = _RECORDS[mask_bytes, fields] = struct.Struct("<%ds%s" % (mask_bytes, fields.format.lstrip("<")))
-    end = pos + count * record.size
-    columns = list(zip(*record.iter_unpack(raw[pos:end]))) or [()] * len(fields.format)
-    return ([int.from_bytes(mask, "little") for mask in columns[0]],) + tuple(map(list, columns[1:])) + (end,)
+    """``count`` records of a mask then ``fields`` at ``pos``: (the masks as ints, then each
+    field's values), each a list, and the position after them. All the records are unpacked
+    by one struct call and the columns cut out of its result by strided slices, so no Python
+    code runs per record but for a mask wider than 8 bytes (over 64 events): the per-record
+    decoding was most of a large image's parse."""
+    code, codes = _MASK_CODES.get(mask_bytes), fields.format.lstrip("<")
+    flat = struct.unpack_from("<" + ((code or "%ds" % mask_bytes) + codes) * count, raw, pos)
+    step = 1 + len(codes)       # values per record: the mask, then one per field
+    masks = list(flat[0::step]) if code else [int.from_bytes(mask, "little") for mask in flat[0::step]]
+    return (masks,) + tuple(list(flat[i::step]) for i in range(1, step)) + (pos + count * (mask_bytes + fields.size),)
 
 
-_RECORDS: Dict[tuple, struct.Struct] = {}     # (mask bytes, fields) -> the record's struct
+_MASK_CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}     # masks of these widths unpack as integers
 
 
 class Image:
@@ -270,6 +272,8 @@ class Image:
 
     def _check_indices(self, h: Header) -> None:
         """Every index the step follows stays inside the image, every mask inside E events."""
+        if self._indices_fit(h):
+            return
         outside = ~((1 << self.num_events) - 1)
         if (self.controllable | self.public) & outside:
             raise _layout_error("image event masks name events beyond the %d events" % self.num_events)
@@ -282,9 +286,6 @@ class Image:
                                                                           self.sup_initial[s], h.num_states))
             if self.sup_alphabet[s] & outside:
                 raise _layout_error("image supervisor %d's alphabet names events beyond the %d events" % (s, self.num_events))
-            if self._states_fit(first, count, h.num_transitions):
-                expected_first = first + count
-                continue
             for g in range(first, first + count):      # find the first defect, to name it
                 defined, succ = self.state_defined[g], self.state_first[g]
                 if defined & outside:
@@ -299,15 +300,22 @@ class Image:
         if expected_first != h.num_states:
             raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, h.num_states))
 
-    def _states_fit(self, first: int, count: int, num_transitions: int) -> bool:
-        """Whether the ``count`` states from ``first`` pass _check_indices's checks, in one pass
-        of C-level operations for the usual layout (each state's successors right after the
-        previous state's); False otherwise, and the caller looks state by state."""
-        defined = self.state_defined[first:first + count]
-        starts = self.state_first[first:first + count]
-        ends = list(itertools.accumulate([mask.bit_count() for mask in defined], initial=starts[0]))
-        return (max(defined) >> self.num_events == 0 and ends[:-1] == starts and ends[-1] <= num_transitions
-                and max(self.targets[starts[0]:ends[-1]], default=0) < count)
+    def _indices_fit(self, h: Header) -> bool:
+        """Whether the image passes _check_indices's checks, in a few C-level passes over the
+        whole image for the usual layout (each state's successors right after the previous
+        state's); False otherwise, and _check_indices looks supervisor by supervisor and state
+        by state for the first defect, to name it."""
+        counts, firsts = self.sup_num_states, self.sup_first_state
+        if (self.controllable | self.public | max(self.sup_alphabet) | max(self.state_defined, default=0)) \
+                >> self.num_events or min(counts) == 0 or any(map(operator.ge, self.sup_initial, counts)):
+            return False
+        bounds = list(itertools.accumulate(counts, initial=0))
+        if bounds[:-1] != firsts or bounds[-1] != h.num_states:
+            return False
+        ends = list(itertools.accumulate(map(int.bit_count, self.state_defined), initial=self.state_first[0]))
+        targets = self.targets
+        return (ends[:-1] == self.state_first and ends[-1] <= h.num_transitions
+                and all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(firsts, counts)))
 
     def event_name(self, event: int) -> str:
         """``EV_<name>`` when the image carries names, else ``EV_<index>``."""

@@ -272,41 +272,32 @@ class VM:
         # each of its states on the event, None where undefined): one list index per move.
         # The gates: the supervisors that can disable a controllable event, each with the
         # controllable events it allows in each of its states (the enabled set is their AND).
-        self.weights, gates = [], []
+        gates = []
         pairs_of: list = [[] for _ in range(image.num_events)]
         self._moves = None
-        events_of: dict = {}    # a state's defined mask -> its events (states share masks)
         inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
-        targets, probs = image.targets, image.probs
+        targets = image.targets
         for sup, first, count, alphabet in zip(range(image.num_supervisors), image.sup_first_state,
                                                image.sup_num_states, image.sup_alphabet):
             defined = image.state_defined[first:first + count]
+            starts = image.state_first[first:first + count]
             outside = controllable & ~alphabet      # the controllable events it cannot disable
             gate = [(mask & controllable) | outside for mask in defined]
             if min(gate) != controllable:
                 gates.append((sup, gate))
-            columns = {e: [None] * count for e in _bits(alphabet)}
-            weights = []
-            for local, (mask, base) in enumerate(zip(defined, image.state_first[first:first + count])):
-                events = events_of.get(mask)
-                if events is None:
-                    events = events_of[mask] = _bits(mask)
-                successors = targets[base:base + len(events)]
-                if probs is not None:
-                    weights.append(dict(zip(events, probs[base:base + len(events)])))
-                for e, target in zip(events, successors):
-                    if e in columns:    # a transition on an event outside its alphabet is never taken
-                        columns[e][local] = target
-            self.weights.append(weights)
-            for e, column in columns.items():
-                pairs_of[e].append((sup, column))
-                if not controllable >> e & 1 and None in column:
-                    inputs_total = False
+            inputs = alphabet & ~controllable
+            if inputs_total and inputs and min(mask & inputs for mask in defined) != inputs:
+                inputs_total = False
+            # A column per event, one comprehension each: the successor is at the event's rank
+            # among the state's defined events (no Python loop per transition).
+            for e in _bits(alphabet):
+                bit, below = 1 << e, (1 << e) - 1
+                pairs_of[e].append((sup, [targets[base + (mask & below).bit_count()] if mask & bit else None
+                                          for mask, base in zip(defined, starts)]))
         self.successors = [tuple(pairs) for pairs in pairs_of]
         # When no state of any supervisor leaves an uncontrollable event undefined, no input can
         # violate, and the step moves the inputs by these successors without a check (else None).
         self._total = self.successors if inputs_total else None
-        self.event_sups = [[sup for sup, _ in pairs] for pairs in pairs_of]
         self._gates = tuple(gates)
         self._replan()
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
@@ -516,10 +507,15 @@ class VM:
         self._fire((event,), self._bound()[0])
 
     def _weight(self, event):
+        """The event's Q15 weight: the product of its probability in each supervisor that has
+        it, read from the image's probability section where the state's successors are."""
+        image = self.image
         weight = Q15_ONE
-        if self.image.probs is not None:
-            for sup in self.event_sups[event]:
-                weight = (weight * self.weights[sup][self.states[sup]][event]) >> 15
+        if image.probs is not None:
+            below = (1 << event) - 1
+            for sup, _ in self.successors[event]:
+                g = image.sup_first_state[sup] + self.states[sup]
+                weight = (weight * image.probs[image.state_first[g] + (image.state_defined[g] & below).bit_count()]) >> 15
         return weight
 
     def select(self, enabled):
