@@ -26,6 +26,13 @@
 #include <utility>
 #include <vector>
 
+// Keeps a rare path out of a hot loop (GCC and Clang; elsewhere the compiler decides).
+#if defined(__GNUC__) || defined(__clang__)
+#define SWARMVM_NOINLINE __attribute__((noinline))
+#else
+#define SWARMVM_NOINLINE
+#endif
+
 namespace swarmvm {
 
 // The table image format (docs/image-format.md), defined once in runtime_py/swarmvm_format.py;
@@ -784,7 +791,8 @@ private:
         std::vector<unsigned> input_order;              // public uncontrollable, then private
         Sets<Mask> wide;
         Sets<BasicMask<1>> narrow;                      // the same for images of up to 64 events
-        std::vector<std::uint32_t> successors;          // per (global state, event): successor_at() or
+        std::size_t num_globals = 0;                    // global states: all supervisors' states
+        std::vector<std::uint32_t> successors;          // per (event, global state): successor_at() or
                                                         // kNoSuccessor (empty above kDenseSlots cells)
         std::vector<unsigned> event_sups;               // the supervisors holding each event, event
         std::vector<unsigned> event_sups_first;         // by event: e's from event_sups_first[e] on
@@ -802,7 +810,8 @@ private:
         d.wide.private_inputs.for_each([&](unsigned e) { d.input_order.push_back(e); });
         // The successor of every state on every event, found once here instead of by a rank
         // count per supervisor and step (a table of states x events; larger images rank).
-        const std::size_t cells = image.state_defined.size() * image.num_events;
+        d.num_globals = image.state_defined.size();
+        const std::size_t cells = d.num_globals * image.num_events;
         if (cells <= kDenseSlots) {
             d.successors.assign(cells, kNoSuccessor);
             for (unsigned s = 0; s < image.num_supervisors; ++s) {
@@ -810,7 +819,7 @@ private:
                     const std::size_t g = image.sup_first_state[s] + q;
                     unsigned slot = image.state_first[g];
                     image.state_defined[g].for_each([&](unsigned e) {
-                        d.successors[g * image.num_events + e] =
+                        d.successors[e * d.num_globals + g] =
                             successor_at(slot, image.sup_first_state[s] + image.targets[slot]);
                         ++slot;
                     });
@@ -899,37 +908,78 @@ private:
     // Calls f(s) for every supervisor s whose alphabet holds `event`, in supervisor order.
     template <class F>
     void for_each_sup(unsigned event, F&& f) const {
-        const unsigned* s = derived_.event_sups.data();
-        for (unsigned i = derived_.event_sups_first[event]; i < derived_.event_sups_first[event + 1]; ++i) f(s[i]);
+        const unsigned* const sups = derived_.event_sups.data();
+        const unsigned* const end = sups + derived_.event_sups_first[event + 1];
+        for (const unsigned* s = sups + derived_.event_sups_first[event]; s != end; ++s) f(*s);
+    }
+
+    // The successors on event e by global state (images with a successor table).
+    const std::uint32_t* successors_of(unsigned e) const {
+        return derived_.successors.data() + static_cast<std::size_t>(e) * derived_.num_globals;
     }
 
     // Supervisor s's successor on e (successor_at()), or kNoSuccessor if undefined.
     std::uint32_t successor(unsigned s, unsigned e) const {
+        if (!derived_.successors.empty()) return successors_of(e)[globals_[s]];
+        return ranked_successor(s, e);
+    }
+
+    // successor() of an image too large for the table: a rank count in the state's defined
+    // events.
+    std::uint32_t ranked_successor(unsigned s, unsigned e) const {
         const unsigned g = globals_[s];
-        if (!derived_.successors.empty()) return derived_.successors[static_cast<std::size_t>(g) * image_.num_events + e];
         const Mask& defined = image_.state_defined[g];
         if (!defined.test(e)) return kNoSuccessor;
         const unsigned slot = image_.state_first[g] + defined.count_below(e);
         return successor_at(slot, image_.sup_first_state[s] + image_.targets[slot]);
     }
 
+    // The transitions of `event` in every supervisor holding it, then its action. The rare
+    // paths (an image without a successor table, an action) are calls, so that the loop keeps
+    // its pointers in registers.
     void apply(unsigned event) {
+        if (derived_.successors.empty()) {
+            transit_ranked(event);
+        } else {
+            const std::uint32_t* const table = successors_of(event);
+            const std::uint16_t* const globals = globals_.data();
+            transit(event, [table, globals](unsigned s) { return table[globals[s]]; });
+        }
+        if (actions_[event]) act(event);
+    }
+
+    // Moves every supervisor holding `event` to successor(s) (successor_at()); a supervisor
+    // without one (kNoSuccessor) stays and counts a violation.
+    template <class Successor>
+    void transit(unsigned event, Successor&& successor) {
+        std::uint16_t* const globals = globals_.data();
+        std::uint16_t* const states = states_.data();
+        const std::uint16_t* const first = image_.sup_first_state.data();
         for_each_sup(event, [&](unsigned s) {
-            const std::uint32_t next = successor(s, event);
+            const std::uint32_t next = successor(s);
             if (next == kNoSuccessor) {
-                if (violations_ != kMaxViolations) ++violations_;
-                if (on_violation_) on_violation_(event, s);
+                violated(event, s);
             } else {
-                globals_[s] = static_cast<std::uint16_t>(next);
-                states_[s] = static_cast<std::uint16_t>(globals_[s] - image_.sup_first_state[s]);
+                globals[s] = static_cast<std::uint16_t>(next);
+                states[s] = static_cast<std::uint16_t>(globals[s] - first[s]);
             }
         });
-        if (actions_[event]) {
-            try {
-                actions_[event](data_[event]);
-            } catch (...) {
-                callback_threw(event, "action");
-            }
+    }
+
+    SWARMVM_NOINLINE void transit_ranked(unsigned event) {
+        transit(event, [this, event](unsigned s) { return ranked_successor(s, event); });
+    }
+
+    void violated(unsigned event, unsigned s) {
+        if (violations_ != kMaxViolations) ++violations_;
+        if (on_violation_) on_violation_(event, s);
+    }
+
+    SWARMVM_NOINLINE void act(unsigned event) {
+        try {
+            actions_[event](data_[event]);
+        } catch (...) {
+            callback_threw(event, "action");
         }
     }
 
