@@ -29,8 +29,10 @@
 // Keeps a rare path out of a hot loop (GCC and Clang; elsewhere the compiler decides).
 #if defined(__GNUC__) || defined(__clang__)
 #define SWARMVM_NOINLINE __attribute__((noinline))
+#define SWARMVM_INLINE __attribute__((always_inline)) inline
 #else
 #define SWARMVM_NOINLINE
+#define SWARMVM_INLINE inline
 #endif
 
 namespace swarmvm {
@@ -937,7 +939,7 @@ private:
     // The transitions of `event` in every supervisor holding it, then its action. The rare
     // paths (an image without a successor table, an action) are calls, so that the loop keeps
     // its pointers in registers.
-    void apply(unsigned event) {
+    SWARMVM_INLINE void apply(unsigned event) {
         if (derived_.successors.empty()) {
             transit_ranked(event);
         } else {
@@ -1010,6 +1012,13 @@ private:
             const unsigned n = mask.count();
             return mask.nth(n == 1 ? 0 : scale_below(rng_.next(), n));
         }
+        return select_listed(mask);
+    }
+
+    // select() for the policies that list the enabled events (first, probabilistic): out of
+    // line, so that the uniform pick stays a few instructions in the step.
+    template <class M>
+    SWARMVM_NOINLINE unsigned select_listed(const M& mask) {
         std::array<unsigned, 256> en{};
         unsigned n = 0;
         mask.for_each([&](unsigned e) { en[n++] = e; });
@@ -1184,17 +1193,17 @@ public:
     // Uncontrollable event: a check (returning unsigned char or bool), no action.
     template <class C, class R>
     void add_callback(C* p, const std::string& event, void* /*no action*/, R (C::*ci)(void*), void* data) {
-        vm_.bind(index(event), typename BasicVM<Rng>::Action(), [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); },
-                 data);
+        const unsigned e = index(event);
+        vm_.bind(e, typename BasicVM<Rng>::Action(), typename BasicVM<Rng>::Check(), data);
+        vm_.set_check(e, [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); });   // the step's direct call
     }
     // Both a check and an action (e.g. turn LEDs on when an uncontrollable event occurs); for a
     // controllable event the check is never called, as in the published SCT.
     template <class C, class R>
     void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), R (C::*ci)(void*), void* data) {
         const unsigned e = index(event);
-        typename BasicVM<Rng>::Check check;
-        if (!vm_.image().controllable.test(e)) check = [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); };
-        vm_.bind(e, [p, clbk](void* d) { (p->*clbk)(d); }, std::move(check), data);
+        vm_.bind(e, [p, clbk](void* d) { (p->*clbk)(d); }, typename BasicVM<Rng>::Check(), data);
+        if (!vm_.image().controllable.test(e)) vm_.set_check(e, [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); });
     }
 
     virtual void run_step() {
