@@ -767,6 +767,24 @@ private:
         unsigned event;
     };
 
+    // The poll list points into this VM's checks_. Moving a VM moves the vectors' storage, so
+    // the pointers stay good; a copy has its own checks_, so a copied list is marked stale and
+    // rebuilt by the copy's next step.
+    struct Polls {
+        std::vector<Poll> list;
+        bool stale = false;
+
+        Polls() = default;
+        Polls(const Polls&) : stale(true) {}
+        Polls(Polls&&) = default;
+        Polls& operator=(const Polls&) {
+            list.clear();
+            stale = true;
+            return *this;
+        }
+        Polls& operator=(Polls&&) = default;
+    };
+
     void store_check(unsigned event, Check check, CheckCall call) {
         require(event);
         if (image_.controllable.test(event)) {
@@ -780,11 +798,12 @@ private:
     // The poll list from the bound checks: rebuilt whenever a binding or the image changes, so
     // the step neither walks unbound events nor tests for an empty Check.
     void rebuild_polls() {
-        polls_.clear();
+        polls_.list.clear();
+        polls_.stale = false;
         for (unsigned e : derived_.input_order) {
             if (!checks_[e]) continue;
             const CheckCall& how = check_calls_[e];
-            polls_.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], e});
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], e});
         }
     }
 
@@ -872,7 +891,8 @@ private:
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
         M current;
-        for (const Poll& p : polls_) {
+        if (polls_.stale) rebuild_polls();
+        for (const Poll& p : polls_.list) {
             bool occurs;
             try {
                 occurs = p.call(p.callable, p.data);
@@ -1052,7 +1072,7 @@ private:
     std::vector<Action> actions_;
     std::vector<Check> checks_;
     std::vector<CheckCall> check_calls_;   // per event, beside checks_
-    std::vector<Poll> polls_;
+    Polls polls_;
     std::vector<void*> data_;
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;

@@ -102,7 +102,8 @@ void throwing_action(const swarmvm::Image& image, bool standard) {
 // The same checks bound in every way the API offers (a lambda to set_check, a VM::Check to
 // set_check, a lambda to bind) step alike: the step calls a check through the function pointer
 // made for its type or through its std::function. Rebinding replaces a check, unbinding
-// (nullptr) leaves its event out of the step, and load() keeps the bindings by name.
+// (nullptr) leaves its event out of the step, load() keeps the bindings by name, and a copied VM
+// steps with its own copies of the checks.
 void binding_forms(const swarmvm::Image& image) {
     VM by_lambda(image), by_function(image), by_bind(image);
     std::uint32_t inputs[3] = {777u, 777u, 777u};
@@ -124,6 +125,7 @@ void binding_forms(const swarmvm::Image& image) {
     by_lambda.load(image);
     for (unsigned step = 0; step < 50; ++step) same = same && by_function.step() == by_lambda.step();
     std::printf("bindings after-load-same=%d\n", same ? 1 : 0);
+    VM copy(by_lambda);   // its own copies of the checks: unbinding the original's leaves them
     bool fired_unbound = false;
     for (unsigned e = 0; e < image.num_events; ++e) {
         if (!image.controllable.test(e)) by_lambda.set_check(e, nullptr);
@@ -132,6 +134,8 @@ void binding_forms(const swarmvm::Image& image) {
         for (unsigned e : by_lambda.step()) fired_unbound = fired_unbound || !image.controllable.test(e);
     }
     std::printf("bindings unbound-never-fire=%d\n", fired_unbound ? 0 : 1);
+    for (unsigned step = 0; step < 50; ++step) same = same && copy.step() == by_function.step();
+    std::printf("bindings copy-same=%d\n", same ? 1 : 0);
 }
 
 }  // namespace

@@ -35,4 +35,5 @@ def test_throwing_callbacks_follow_the_python_policy(tmp_path):
         "bindings same=1",
         "bindings after-load-same=1",
         "bindings unbound-never-fire=1",
+        "bindings copy-same=1",
     ]
