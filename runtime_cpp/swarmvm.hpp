@@ -22,8 +22,18 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+// Keeps a rare path out of a hot loop (GCC and Clang; elsewhere the compiler decides).
+#if defined(__GNUC__) || defined(__clang__)
+#define SWARMVM_NOINLINE __attribute__((noinline))
+#define SWARMVM_INLINE __attribute__((always_inline)) inline
+#else
+#define SWARMVM_NOINLINE
+#define SWARMVM_INLINE inline
+#endif
 
 namespace swarmvm {
 
@@ -130,6 +140,8 @@ public:
     std::uint64_t word(unsigned i) const { return words_[i]; }
     bool test(unsigned e) const { return (words_[e >> 6] >> (e & 63u)) & 1u; }
     void set(unsigned e) { words_[e >> 6] |= std::uint64_t{1} << (e & 63u); }
+    // set(e) if `on`, without a branch (a check's result is as good as random to a predictor).
+    void set_if(unsigned e, bool on) { words_[e >> 6] |= std::uint64_t{on} << (e & 63u); }
     bool any() const {
         std::uint64_t any = 0;
         for (unsigned i = 0; i < kWords; ++i) any |= words_[i];
@@ -571,7 +583,9 @@ public:
         derived_ = std::move(derived);
         actions_.assign(image_.num_events, Action());
         checks_.assign(image_.num_events, Check());
+        check_calls_.assign(image_.num_events, CheckCall());
         data_.assign(image_.num_events, nullptr);
+        fired_.reserve(image_.num_events);
         reset();
     }
 
@@ -581,6 +595,7 @@ public:
     void load(Image image) {
         std::vector<Action> actions(image.num_events);
         std::vector<Check> checks(image.num_events);
+        std::vector<CheckCall> check_calls(image.num_events);
         std::vector<void*> data(image.num_events, nullptr);
         for (unsigned e = 0; e < image_.num_events; ++e) {
             if (!actions_[e] && !checks_[e] && data_[e] == nullptr) continue;
@@ -591,6 +606,7 @@ public:
             if (to >= image.num_events) throw UnknownEvent("event index " + std::to_string(e) + " is not in the new image");
             actions[to] = actions_[e];
             checks[to] = checks_[e];
+            check_calls[to] = check_calls_[e];
             data[to] = data_[e];
         }
         Derived derived = derive(image, options_);
@@ -598,13 +614,20 @@ public:
         derived_ = std::move(derived);
         actions_ = std::move(actions);
         checks_ = std::move(checks);
+        check_calls_ = std::move(check_calls);
         data_ = std::move(data);
+        fired_.reserve(image_.num_events);
+        rebuild_polls();
         reset();
     }
 
     // Back to the initial states, cleared inputs and counters, generator re-seeded.
     void reset() {
         states_.assign(image_.sup_initial.begin(), image_.sup_initial.end());
+        globals_.resize(states_.size());
+        for (std::size_t s = 0; s < states_.size(); ++s) {
+            globals_[s] = static_cast<std::uint16_t>(image_.sup_first_state[s] + states_[s]);
+        }
         previous_ = Mask();
         previous_narrow_ = BasicMask<1>();
         violations_ = 0;
@@ -622,8 +645,12 @@ public:
             throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
         }
         if (action) actions_[event] = std::move(action);
-        if (check) checks_[event] = std::move(check);
+        if (check) {
+            checks_[event] = std::move(check);
+            check_calls_[event] = CheckCall();
+        }
         data_[event] = data;
+        rebuild_polls();
     }
     void set_action(const std::string& event, Action action) { set_action(image_.event_index(event), std::move(action)); }
     void set_action(unsigned event, Action action) {
@@ -631,12 +658,24 @@ public:
         actions_[event] = std::move(action);
     }
     void set_check(const std::string& event, Check check) { set_check(image_.event_index(event), std::move(check)); }
-    void set_check(unsigned event, Check check) {
-        require(event);
-        if (image_.controllable.test(event)) {
-            throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
-        }
-        checks_[event] = std::move(check);
+    void set_check(unsigned event, Check check) { store_check(event, std::move(check), CheckCall()); }
+    // The same for a callable of a type known here (a lambda, a function pointer): still held
+    // by a Check, but the step calls it through a function pointer made for its type (one
+    // direct call, its body inlined) instead of through std::function's empty test and invoker.
+    template <class F, class = std::enable_if_t<!std::is_same<std::decay_t<F>, Check>::value &&
+                                                !std::is_same<std::decay_t<F>, std::nullptr_t>::value &&
+                                                std::is_convertible<std::invoke_result_t<F&, void*>, bool>::value>>
+    void set_check(const std::string& event, F&& check) {
+        set_check(image_.event_index(event), std::forward<F>(check));
+    }
+    template <class F, class = std::enable_if_t<!std::is_same<std::decay_t<F>, Check>::value &&
+                                                !std::is_same<std::decay_t<F>, std::nullptr_t>::value &&
+                                                std::is_convertible<std::invoke_result_t<F&, void*>, bool>::value>>
+    void set_check(unsigned event, F&& check) {
+        using Callable = std::decay_t<F>;
+        store_check(event, Check(std::forward<F>(check)), CheckCall{
+            [](void* callable, void* data) -> bool { return (*static_cast<Callable*>(callable))(data); },
+            [](Check& owner) -> void* { return owner.template target<Callable>(); }});
     }
     void on_violation(ViolationHook hook) { on_violation_ = std::move(hook); }
 
@@ -684,8 +723,16 @@ public:
     Rng& rng() { return rng_; }
 
 private:
-    // Largest successor table (states x events) built at load: 4 MB of int32.
+    // Largest successor table (states x events) built at load: 4 MB of uint32.
     static constexpr std::size_t kDenseSlots = std::size_t{1} << 20;
+    static constexpr std::uint32_t kNoSuccessor = 0xFFFFFFFFu;
+
+    // A defined successor as a transition needs it, in one word: the position of the target in
+    // the target section (for its probability) above the target's global state (what enabled
+    // sets and successors are indexed by). Both are below 65535, so it is never kNoSuccessor.
+    static std::uint32_t successor_at(unsigned slot, unsigned global) {
+        return (static_cast<std::uint32_t>(slot) << 16) | global;
+    }
 
     // The sets a step works with, in one representation M (a BasicMask).
     template <class M>
@@ -702,14 +749,74 @@ private:
         }
     };
 
+    // How the step calls a bound check whose type was known when it was bound: `call` invokes
+    // the callable that `locate` finds inside its Check (found again whenever the Checks move).
+    // The default, for a check bound as a Check, calls the Check.
+    struct CheckCall {
+        bool (*call)(void* callable, void* data) = [](void* check, void* data) -> bool {
+            return (*static_cast<Check*>(check))(data);
+        };
+        void* (*locate)(Check& owner) = [](Check& owner) -> void* { return &owner; };
+    };
+
+    // A bound check as the step polls it, in input order; the unbound ones are left out.
+    struct Poll {
+        bool (*call)(void* callable, void* data);
+        void* callable;
+        void* data;
+        unsigned event;
+    };
+
+    // The poll list points into this VM's checks_. Moving a VM moves the vectors' storage, so
+    // the pointers stay good; a copy has its own checks_, so a copied list is marked stale and
+    // rebuilt by the copy's next step.
+    struct Polls {
+        std::vector<Poll> list;
+        bool stale = false;
+
+        Polls() = default;
+        Polls(const Polls&) : stale(true) {}
+        Polls(Polls&&) = default;
+        Polls& operator=(const Polls&) {
+            list.clear();
+            stale = true;
+            return *this;
+        }
+        Polls& operator=(Polls&&) = default;
+    };
+
+    void store_check(unsigned event, Check check, CheckCall call) {
+        require(event);
+        if (image_.controllable.test(event)) {
+            throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
+        }
+        checks_[event] = std::move(check);
+        check_calls_[event] = checks_[event] ? call : CheckCall();
+        rebuild_polls();
+    }
+
+    // The poll list from the bound checks: rebuilt whenever a binding or the image changes, so
+    // the step neither walks unbound events nor tests for an empty Check.
+    void rebuild_polls() {
+        polls_.list.clear();
+        polls_.stale = false;
+        for (unsigned e : derived_.input_order) {
+            if (!checks_[e]) continue;
+            const CheckCall& how = check_calls_[e];
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], e});
+        }
+    }
+
     // Lookup structures derived from an image (and the priority option) once, at load.
     struct Derived {
         std::vector<unsigned> input_order;              // public uncontrollable, then private
         Sets<Mask> wide;
         Sets<BasicMask<1>> narrow;                      // the same for images of up to 64 events
-        std::vector<std::int32_t> slots;                // per (global state, event): target slot, -1 if
-                                                        // undefined (empty for images above kDenseSlots)
-        std::vector<std::vector<unsigned>> event_sups;  // per event: supervisors holding it
+        std::size_t num_globals = 0;                    // global states: all supervisors' states
+        std::vector<std::uint32_t> successors;          // per (event, global state): successor_at() or
+                                                        // kNoSuccessor (empty above kDenseSlots cells)
+        std::vector<unsigned> event_sups;               // the supervisors holding each event, event
+        std::vector<unsigned> event_sups_first;         // by event: e's from event_sups_first[e] on
         std::vector<unsigned> rank;                     // per event: rank for policy first
     };
 
@@ -724,12 +831,20 @@ private:
         d.wide.private_inputs.for_each([&](unsigned e) { d.input_order.push_back(e); });
         // The successor of every state on every event, found once here instead of by a rank
         // count per supervisor and step (a table of states x events; larger images rank).
-        const std::size_t cells = image.state_defined.size() * image.num_events;
+        d.num_globals = image.state_defined.size();
+        const std::size_t cells = d.num_globals * image.num_events;
         if (cells <= kDenseSlots) {
-            d.slots.assign(cells, -1);
-            for (std::size_t g = 0; g < image.state_defined.size(); ++g) {
-                std::int32_t slot = image.state_first[g];
-                image.state_defined[g].for_each([&](unsigned e) { d.slots[g * image.num_events + e] = slot++; });
+            d.successors.assign(cells, kNoSuccessor);
+            for (unsigned s = 0; s < image.num_supervisors; ++s) {
+                for (unsigned q = 0; q < image.sup_num_states[s]; ++q) {
+                    const std::size_t g = image.sup_first_state[s] + q;
+                    unsigned slot = image.state_first[g];
+                    image.state_defined[g].for_each([&](unsigned e) {
+                        d.successors[e * d.num_globals + g] =
+                            successor_at(slot, image.sup_first_state[s] + image.targets[slot]);
+                        ++slot;
+                    });
+                }
             }
         }
         d.wide.allowed.resize(image.state_defined.size());
@@ -742,12 +857,13 @@ private:
             }
         }
         if (image.num_events <= 64) d.narrow = Sets<BasicMask<1>>(d.wide);
-        d.event_sups.resize(image.num_events);
-        for (unsigned s = 0; s < image.num_supervisors; ++s) {
-            image.sup_alphabet[s].for_each([&](unsigned e) {
-                if (e < image.num_events) d.event_sups[e].push_back(s);
-            });
+        for (unsigned e = 0; e < image.num_events; ++e) {
+            d.event_sups_first.push_back(static_cast<unsigned>(d.event_sups.size()));
+            for (unsigned s = 0; s < image.num_supervisors; ++s) {
+                if (image.sup_alphabet[s].test(e)) d.event_sups.push_back(s);
+            }
         }
+        d.event_sups_first.push_back(static_cast<unsigned>(d.event_sups.size()));
         std::vector<unsigned> listed;
         for (const std::string& name : options.priority) listed.push_back(image.event_index(name));
         d.rank.resize(image.num_events);
@@ -767,7 +883,7 @@ private:
     M enabled_in(const Sets<M>& sets) const {
         M mask = sets.controllable;
         for (unsigned s = 0; s < image_.num_supervisors; ++s) {
-            mask &= sets.allowed[image_.sup_first_state[s] + states_[s]];
+            mask &= sets.allowed[globals_[s]];
         }
         return mask;
     }
@@ -775,8 +891,15 @@ private:
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
         M current;
-        for (unsigned e : derived_.input_order) {
-            if (poll(e)) current.set(e);
+        if (polls_.stale) rebuild_polls();
+        for (const Poll& p : polls_.list) {
+            bool occurs;
+            try {
+                occurs = p.call(p.callable, p.data);
+            } catch (...) {
+                callback_threw(p.event, "check");
+            }
+            current.set_if(p.event, occurs);
         }
         fired_.clear();     // after the checks: one that throws leaves the last step's events
         M occurred = current;
@@ -804,31 +927,81 @@ private:
         }
     }
 
-    // Position in the target section of supervisor s's successor on e, or -1 if undefined.
-    long successor_slot(unsigned s, unsigned e) const {
-        const unsigned g = image_.sup_first_state[s] + states_[s];
-        if (!derived_.slots.empty()) return derived_.slots[static_cast<std::size_t>(g) * image_.num_events + e];
-        const Mask& defined = image_.state_defined[g];
-        if (!defined.test(e)) return -1;
-        return static_cast<long>(image_.state_first[g] + defined.count_below(e));
+    // Calls f(s) for every supervisor s whose alphabet holds `event`, in supervisor order.
+    template <class F>
+    void for_each_sup(unsigned event, F&& f) const {
+        const unsigned* const sups = derived_.event_sups.data();
+        const unsigned* const end = sups + derived_.event_sups_first[event + 1];
+        for (const unsigned* s = sups + derived_.event_sups_first[event]; s != end; ++s) f(*s);
     }
 
-    void apply(unsigned event) {
-        for (unsigned s : derived_.event_sups[event]) {
-            const long slot = successor_slot(s, event);
-            if (slot < 0) {
-                if (violations_ != kMaxViolations) ++violations_;
-                if (on_violation_) on_violation_(event, s);
-            } else {
-                states_[s] = image_.targets[static_cast<std::size_t>(slot)];
-            }
+    // The successors on event e by global state (images with a successor table).
+    const std::uint32_t* successors_of(unsigned e) const {
+        return derived_.successors.data() + static_cast<std::size_t>(e) * derived_.num_globals;
+    }
+
+    // Supervisor s's successor on e (successor_at()), or kNoSuccessor if undefined.
+    std::uint32_t successor(unsigned s, unsigned e) const {
+        if (!derived_.successors.empty()) return successors_of(e)[globals_[s]];
+        return ranked_successor(s, e);
+    }
+
+    // successor() of an image too large for the table: a rank count in the state's defined
+    // events.
+    std::uint32_t ranked_successor(unsigned s, unsigned e) const {
+        const unsigned g = globals_[s];
+        const Mask& defined = image_.state_defined[g];
+        if (!defined.test(e)) return kNoSuccessor;
+        const unsigned slot = image_.state_first[g] + defined.count_below(e);
+        return successor_at(slot, image_.sup_first_state[s] + image_.targets[slot]);
+    }
+
+    // The transitions of `event` in every supervisor holding it, then its action. The rare
+    // paths (an image without a successor table, an action) are calls, so that the loop keeps
+    // its pointers in registers.
+    SWARMVM_INLINE void apply(unsigned event) {
+        if (derived_.successors.empty()) {
+            transit_ranked(event);
+        } else {
+            const std::uint32_t* const table = successors_of(event);
+            const std::uint16_t* const globals = globals_.data();
+            transit(event, [table, globals](unsigned s) { return table[globals[s]]; });
         }
-        if (actions_[event]) {
-            try {
-                actions_[event](data_[event]);
-            } catch (...) {
-                callback_threw(event, "action");
+        if (actions_[event]) act(event);
+    }
+
+    // Moves every supervisor holding `event` to successor(s) (successor_at()); a supervisor
+    // without one (kNoSuccessor) stays and counts a violation.
+    template <class Successor>
+    void transit(unsigned event, Successor&& successor) {
+        std::uint16_t* const globals = globals_.data();
+        std::uint16_t* const states = states_.data();
+        const std::uint16_t* const first = image_.sup_first_state.data();
+        for_each_sup(event, [&](unsigned s) {
+            const std::uint32_t next = successor(s);
+            if (next == kNoSuccessor) {
+                violated(event, s);
+            } else {
+                globals[s] = static_cast<std::uint16_t>(next);
+                states[s] = static_cast<std::uint16_t>(globals[s] - first[s]);
             }
+        });
+    }
+
+    SWARMVM_NOINLINE void transit_ranked(unsigned event) {
+        transit(event, [this, event](unsigned s) { return ranked_successor(s, event); });
+    }
+
+    void violated(unsigned event, unsigned s) {
+        if (violations_ != kMaxViolations) ++violations_;
+        if (on_violation_) on_violation_(event, s);
+    }
+
+    SWARMVM_NOINLINE void act(unsigned event) {
+        try {
+            actions_[event](data_[event]);
+        } catch (...) {
+            callback_threw(event, "action");
         }
     }
 
@@ -847,9 +1020,9 @@ private:
     std::uint32_t weight(unsigned event) const {
         std::uint32_t w = kQ15One;
         if (!image_.has_probs()) return w;
-        for (unsigned s : derived_.event_sups[event]) {
-            w = (w * image_.probs[static_cast<std::size_t>(successor_slot(s, event))]) >> 15;
-        }
+        for_each_sup(event, [&](unsigned s) {
+            w = (w * image_.probs[successor(s, event) >> 16]) >> 15;
+        });
         return w;
     }
 
@@ -859,6 +1032,13 @@ private:
             const unsigned n = mask.count();
             return mask.nth(n == 1 ? 0 : scale_below(rng_.next(), n));
         }
+        return select_listed(mask);
+    }
+
+    // select() for the policies that list the enabled events (first, probabilistic): out of
+    // line, so that the uniform pick stays a few instructions in the step.
+    template <class M>
+    SWARMVM_NOINLINE unsigned select_listed(const M& mask) {
         std::array<unsigned, 256> en{};
         unsigned n = 0;
         mask.for_each([&](unsigned e) { en[n++] = e; });
@@ -891,9 +1071,12 @@ private:
     Derived derived_;
     std::vector<Action> actions_;
     std::vector<Check> checks_;
+    std::vector<CheckCall> check_calls_;   // per event, beside checks_
+    Polls polls_;
     std::vector<void*> data_;
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;
+    std::vector<std::uint16_t> globals_;   // per supervisor: its state's global index
     Mask previous_;                   // check values of the previous step (edge), for E > 64
     BasicMask<1> previous_narrow_;    // ... for E <= 64
     std::uint32_t violations_ = 0;
@@ -1030,17 +1213,17 @@ public:
     // Uncontrollable event: a check (returning unsigned char or bool), no action.
     template <class C, class R>
     void add_callback(C* p, const std::string& event, void* /*no action*/, R (C::*ci)(void*), void* data) {
-        vm_.bind(index(event), typename BasicVM<Rng>::Action(), [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); },
-                 data);
+        const unsigned e = index(event);
+        vm_.bind(e, typename BasicVM<Rng>::Action(), typename BasicVM<Rng>::Check(), data);
+        vm_.set_check(e, [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); });   // the step's direct call
     }
     // Both a check and an action (e.g. turn LEDs on when an uncontrollable event occurs); for a
     // controllable event the check is never called, as in the published SCT.
     template <class C, class R>
     void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), R (C::*ci)(void*), void* data) {
         const unsigned e = index(event);
-        typename BasicVM<Rng>::Check check;
-        if (!vm_.image().controllable.test(e)) check = [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); };
-        vm_.bind(e, [p, clbk](void* d) { (p->*clbk)(d); }, std::move(check), data);
+        vm_.bind(e, [p, clbk](void* d) { (p->*clbk)(d); }, typename BasicVM<Rng>::Check(), data);
+        if (!vm_.image().controllable.test(e)) vm_.set_check(e, [p, ci](void* d) { return static_cast<bool>((p->*ci)(d)); });
     }
 
     virtual void run_step() {

@@ -99,6 +99,45 @@ void throwing_action(const swarmvm::Image& image, bool standard) {
     std::printf("action no-controllable-event\n");
 }
 
+// The same checks bound in every way the API offers (a lambda to set_check, a VM::Check to
+// set_check, a lambda to bind) step alike: the step calls a check through the function pointer
+// made for its type or through its std::function. Rebinding replaces a check, unbinding
+// (nullptr) leaves its event out of the step, load() keeps the bindings by name, and a copied VM
+// steps with its own copies of the checks.
+void binding_forms(const swarmvm::Image& image) {
+    VM by_lambda(image), by_function(image), by_bind(image);
+    std::uint32_t inputs[3] = {777u, 777u, 777u};
+    for (unsigned e = 0; e < image.num_events; ++e) {
+        if (image.controllable.test(e)) continue;
+        std::uint32_t *a = &inputs[0], *b = &inputs[1], *c = &inputs[2];
+        by_lambda.set_check(e, [](void*) { return false; });   // replaced below
+        by_lambda.set_check(e, [a](void*) { return ((*a = *a * 1103515245u + 12345u) >> 24) < 77u; });
+        by_function.set_check(e, VM::Check([b](void*) { return ((*b = *b * 1103515245u + 12345u) >> 24) < 77u; }));
+        by_bind.bind(e, VM::Action(), [c](void*) { return ((*c = *c * 1103515245u + 12345u) >> 24) < 77u; });
+    }
+    bool same = true;
+    for (unsigned step = 0; step < 200; ++step) {
+        const std::vector<unsigned> want = by_lambda.step();
+        same = same && by_function.step() == want && by_bind.step() == want;
+    }
+    std::printf("bindings same=%d\n", same ? 1 : 0);
+    by_function.load(image);
+    by_lambda.load(image);
+    for (unsigned step = 0; step < 50; ++step) same = same && by_function.step() == by_lambda.step();
+    std::printf("bindings after-load-same=%d\n", same ? 1 : 0);
+    VM copy(by_lambda);   // its own copies of the checks: unbinding the original's leaves them
+    bool fired_unbound = false;
+    for (unsigned e = 0; e < image.num_events; ++e) {
+        if (!image.controllable.test(e)) by_lambda.set_check(e, nullptr);
+    }
+    for (unsigned step = 0; step < 200; ++step) {
+        for (unsigned e : by_lambda.step()) fired_unbound = fired_unbound || !image.controllable.test(e);
+    }
+    std::printf("bindings unbound-never-fire=%d\n", fired_unbound ? 0 : 1);
+    for (unsigned step = 0; step < 50; ++step) same = same && copy.step() == by_function.step();
+    std::printf("bindings copy-same=%d\n", same ? 1 : 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,5 +149,6 @@ int main(int argc, char** argv) {
     throwing_check(image);
     throwing_action(image, true);
     throwing_action(image, false);
+    binding_forms(image);
     return 0;
 }

@@ -32,4 +32,8 @@ def test_throwing_callbacks_follow_the_python_policy(tmp_path):
         "other event=EV_moveToWork kind=action what=the action of EV_moveToWork threw: an exception that is not "
         "a std::exception cause=?",
         "other fired=EV_moveToWork kept-transition=1",
+        "bindings same=1",
+        "bindings after-load-same=1",
+        "bindings unbound-never-fire=1",
+        "bindings copy-same=1",
     ]
