@@ -593,6 +593,7 @@ public:
     // Callbacks bound by name are rebound by name; a name the new image lacks throws
     // UnknownEvent before anything changes, so the VM keeps running the logic it had.
     void load(Image image) {
+        refuse_while_polling("load an image");
         std::vector<Action> actions(image.num_events);
         std::vector<Check> checks(image.num_events);
         std::vector<CheckCall> check_calls(image.num_events);
@@ -644,6 +645,7 @@ public:
         if (check && image_.controllable.test(event)) {
             throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
         }
+        if (check) refuse_while_polling("bind a check");
         if (action) actions_[event] = std::move(action);
         if (check) {
             checks_[event] = std::move(check);
@@ -787,12 +789,20 @@ private:
 
     void store_check(unsigned event, Check check, CheckCall call) {
         require(event);
+        refuse_while_polling("bind a check");
         if (image_.controllable.test(event)) {
             throw std::invalid_argument(image_.event_name(event) + " is controllable: it takes an action, not a check");
         }
         checks_[event] = std::move(check);
         check_calls_[event] = checks_[event] ? call : CheckCall();
         rebuild_polls();
+    }
+
+    // The poll loop walks polls_.list, whose entries point at the bound checks: a check that
+    // rebinds a check or loads an image while the checks are polled would free what the loop
+    // is about to call, so that is refused (an action may: the checks have been polled).
+    void refuse_while_polling(const char* what) const {
+        if (polling_) throw std::logic_error(std::string("a check cannot ") + what + " while the VM polls its checks");
     }
 
     // The poll list from the bound checks: rebuilt whenever a binding or the image changes, so
@@ -892,15 +902,18 @@ private:
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
         M current;
         if (polls_.stale) rebuild_polls();
+        polling_ = true;
         for (const Poll& p : polls_.list) {
             bool occurs;
             try {
                 occurs = p.call(p.callable, p.data);
             } catch (...) {
+                polling_ = false;
                 callback_threw(p.event, "check");
             }
             current.set_if(p.event, occurs);
         }
+        polling_ = false;
         fired_.clear();     // after the checks: one that throws leaves the last step's events
         M occurred = current;
         if (options_.inputs == Inputs::edge) occurred = previous.complement_in(current);
@@ -1073,6 +1086,7 @@ private:
     std::vector<Check> checks_;
     std::vector<CheckCall> check_calls_;   // per event, beside checks_
     Polls polls_;
+    bool polling_ = false;            // inside step_with's poll loop (refuse_while_polling)
     std::vector<void*> data_;
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;

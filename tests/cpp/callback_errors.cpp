@@ -138,6 +138,30 @@ void binding_forms(const swarmvm::Image& image) {
     std::printf("bindings copy-same=%d\n", same ? 1 : 0);
 }
 
+// A check that rebinds a check while the VM polls: refused (the poll list would lose the
+// check it is about to call), reported as the check's failure; the VM is as before the step and
+// steps on with the bindings it had.
+void rebinding_check(const swarmvm::Image& image) {
+    VM vm(image), reference(image);
+    VM* target = &vm;
+    vm.set_check("EV_lowEnergy", [&target](void*) {
+        target->set_check("EV_atCharger", [](void*) { return false; });
+        return true;
+    });
+    reference.set_check("EV_lowEnergy", [](void*) { return true; });
+    for (VM* m : {&vm, &reference}) m->set_check("EV_atCharger", [](void*) { return true; });
+    try {
+        vm.step();
+        std::printf("rebind no-throw\n");
+    } catch (const CallbackError& error) {
+        report("rebind", error);
+    }
+    std::printf("rebind unchanged=%d\n", same_vm(vm, reference) ? 1 : 0);
+    vm.set_check("EV_lowEnergy", [](void*) { return true; });
+    const std::vector<unsigned> got = vm.step(), want = reference.step();
+    std::printf("rebind next-step-same=%d\n", got == want && same_vm(vm, reference) ? 1 : 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,5 +174,6 @@ int main(int argc, char** argv) {
     throwing_action(image, true);
     throwing_action(image, false);
     binding_forms(image);
+    rebinding_check(image);
     return 0;
 }

@@ -36,4 +36,8 @@ def test_throwing_callbacks_follow_the_python_policy(tmp_path):
         "bindings after-load-same=1",
         "bindings unbound-never-fire=1",
         "bindings copy-same=1",
+        "rebind event=EV_lowEnergy kind=check what=the check of EV_lowEnergy threw: a check cannot bind a check "
+        "while the VM polls its checks cause=a check cannot bind a check while the VM polls its checks",
+        "rebind unchanged=1",
+        "rebind next-step-same=1",
     ]
