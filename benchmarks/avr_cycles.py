@@ -26,11 +26,11 @@ current VM as the generated Kilobot Makefile builds it (its features, -ffunction
 
 import argparse
 import json
-import math
 import re
 import statistics
 import subprocess
 import tempfile
+from statistics import geometric_mean
 from pathlib import Path
 
 from step_costs import DEFAULT, STEPS, benchmark_batch, checked_costs, mean_of
@@ -86,10 +86,6 @@ def summary(batch, counts):
                 kilobot=mean_of(batch, counts, KILOBOT_VM))
 
 
-def geomean(values):
-    return math.exp(sum(math.log(v) for v in values) / len(values))
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", help="also write the figures to this file")
@@ -125,7 +121,7 @@ def main():
     ratios = [r["ratio"] for r in rows]
     print("AVR summary: cycles per step %.2fx the baseline's speed (geometric mean; %.2f-%.2f); core flash %d-%d B "
           "at -O3, %d-%d B at -Os (baseline %d-%d B); VM RAM %d-%d B"
-          % (geomean(ratios), min(ratios), max(ratios),
+          % (geometric_mean(ratios), min(ratios), max(ratios),
              min(r["core_flash"]["current_O3"] for r in rows), max(r["core_flash"]["current_O3"] for r in rows),
              min(r["core_flash"]["current_Os"] for r in rows), max(r["core_flash"]["current_Os"] for r in rows),
              min(r["core_flash"]["baseline"] for r in rows), max(r["core_flash"]["baseline"] for r in rows),

@@ -17,10 +17,10 @@ each supervisor's baseline and current programs run alternately. Run with `make 
 
 import argparse
 import json
-import math
 import subprocess
 import tempfile
 import time
+from statistics import geometric_mean
 from pathlib import Path
 
 from step_costs import SEED, DENSITY
@@ -65,10 +65,6 @@ def trace_seconds(exe):
     return time.perf_counter() - start
 
 
-def geomean(values):
-    return math.exp(sum(math.log(v) for v in values) / len(values))
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", help="also write the figures to this file")
@@ -110,8 +106,8 @@ def main():
             int(r["trace"]["current"])) % (r["supervisor"], r["image"], r["load_ratio"], r["trace_ratio"]))
     print("C host summary: image load %.2fx the baseline's rate (geometric mean; %.2f-%.2f); trace %.2fx "
           "(%.2f-%.2f), %s-%s steps per second"
-          % (geomean([r["load_ratio"] for r in rows]), min(r["load_ratio"] for r in rows),
-             max(r["load_ratio"] for r in rows), geomean([r["trace_ratio"] for r in rows]),
+          % (geometric_mean([r["load_ratio"] for r in rows]), min(r["load_ratio"] for r in rows),
+             max(r["load_ratio"] for r in rows), geometric_mean([r["trace_ratio"] for r in rows]),
              min(r["trace_ratio"] for r in rows), max(r["trace_ratio"] for r in rows),
              "{:,}".format(int(min(r["trace"]["current"] for r in rows))),
              "{:,}".format(int(max(r["trace"]["current"] for r in rows)))))

@@ -13,10 +13,10 @@ load spikes hit single rounds). Run with `make bench` or `python benchmarks/cpp_
 
 import argparse
 import json
-import math
 import subprocess
 import sys
 import tempfile
+from statistics import geometric_mean
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -42,10 +42,6 @@ def rates(exe, steps, image):
     out = subprocess.run([str(exe), str(steps), str(image)], check=True, capture_output=True, text=True).stdout
     _, fast, slow = out.split()
     return float(fast), float(slow)
-
-
-def geomean(values):
-    return math.exp(sum(math.log(v) for v in values) / len(values))
 
 
 def main():
@@ -84,8 +80,8 @@ def main():
             r["ratio_straightforward"]))
     ratios = [r["ratio"] for r in rows]
     print("C++ summary: %.2fx the baseline's steps per second (geometric mean; %.2f-%.2f), %.2fx the "
-          "straightforward VM's" % (geomean(ratios), min(ratios), max(ratios),
-                                    geomean([r["ratio_straightforward"] for r in rows])))
+          "straightforward VM's" % (geometric_mean(ratios), min(ratios), max(ratios),
+                                    geometric_mean([r["ratio_straightforward"] for r in rows])))
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=args.steps, rows=rows), indent=1) + "\n")
