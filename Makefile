@@ -23,7 +23,7 @@ typecheck: setup
 	$(PYTHON) -m mypy
 	$(PYTHON) -m ruff check generator runtime_py studies tests benchmarks firmware scripts
 
-# The fast part of the suite (no emulator, nothing slow): under a minute.
+# The fast part of the suite (no emulator, nothing slow): about a minute and a half.
 test-quick: setup
 	$(PYTHON) -m pytest tests -m "not emulator and not slow"
 
