@@ -5,22 +5,14 @@ controller, the robot, the event and the callback (swarmvm::CallbackError, docs/
 
 import pytest
 from argos_project import build, experiment, generate, run_argos
+from conformance.cases import supervisor_yaml
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]
 
 # x: public controllable (its message "x" is received as _x); received_x: private
 # uncontrollable (callback Check_received_x, as _x's would be); stream: private controllable.
-AWKWARD = """num_events: 3
-num_supervisors: 1
-events: [ EV_x,EV_received_x,EV_stream ]
-ev_controllable: [ 1,0,1 ]
-ev_shared: [ 1,0,0 ]
-sup_events: [ [ 1,1,1 ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 3,EV_x,0,0,EV_received_x,0,0,EV_stream,0,0 ]
-"""
+AWKWARD = supervisor_yaml(["x", "received_x", "stream"], [1, 0, 1], [{"x", "received_x", "stream"}],
+                          [[[("x", 0), ("received_x", 0), ("stream", 0)]]], public=[1, 0, 0])
 
 # The user's controller, edited: EV_stream's action throws.
 THROWING_ACTION = """// EV_stream: the motor driver fails.

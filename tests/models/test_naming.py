@@ -6,23 +6,15 @@ import subprocess
 
 import pytest
 
+from conformance.cases import supervisor_yaml
 from swarmvm.errors import InputError
 from swarmvm.naming import MAX_MODEL_NAME, callback_stem, message_code, message_name, model_identifier
 from swarmvm.targets import TARGETS
 
 # Two local events "x" and "_x"/"received_x" clash once "_x" is spelled received_x.
-CLASH = """
-num_events: 3
-num_supervisors: 1
-events: [ EV_x,EV__x,EV_received_x ]
-ev_controllable: [ 1,0,0 ]
-ev_shared: [ 1,1,0 ]
-sup_events: [ [ 1,1,1 ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 3,EV_x,0,0,EV__x,0,0,EV_received_x,0,0 ]
-"""
+def clash_yaml(events=("x", "_x", "received_x"), public=(1, 1, 0)):
+    """One supervisor, one state, a self-loop on each event; the first controllable."""
+    return supervisor_yaml(list(events), [1, 0, 0], [set(events)], [[[(e, 0) for e in events]]], public=list(public))
 
 
 def test_callback_stem_and_message_rules():
@@ -60,8 +52,7 @@ def test_a_rule_of_one_target_refuses_for_that_target_only_and_names_it(tmp_path
     """Two public events whose messages share their first 9 characters are one Kilobot message:
     gen --target kilobot refuses them in one line naming the target; gen --target c accepts."""
     model = tmp_path / "m.yaml"
-    model.write_text(CLASH.replace("EV__x", "EV_longname_a").replace("EV_received_x", "EV_longname_b")
-                     .replace("ev_shared: [ 1,1,0 ]", "ev_shared: [ 1,1,1 ]"))
+    model.write_text(clash_yaml(("x", "longname_a", "longname_b"), public=(1, 1, 1)))
     refused = subprocess.run(["swarmvm", "gen", str(model), "--target", "kilobot", "-o", str(tmp_path / "k")],
                              capture_output=True, text=True)
     assert refused.returncode == 2 and not (tmp_path / "k").exists()
@@ -72,7 +63,7 @@ def test_a_rule_of_one_target_refuses_for_that_target_only_and_names_it(tmp_path
 
 def test_colliding_callbacks_are_refused_naming_both_events(tmp_path):
     model = tmp_path / "clash.yaml"
-    model.write_text(CLASH)
+    model.write_text(clash_yaml())
     result = subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(tmp_path / "out")],
                             capture_output=True, text=True)
     assert result.returncode == 2 and not (tmp_path / "out").exists()
