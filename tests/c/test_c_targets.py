@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 from conformance import c_harness
-from conformance.cases import SUPERVISORS, Run, batch, reference
+from conformance.cases import SUPERVISORS, Run, batch, reference, supervisor_yaml
 from corrupted import corrupt_compiled_in_image
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
@@ -183,17 +183,9 @@ def test_a_corrupted_compiled_in_image_halts_the_kilobot_in_red(tmp_path):
 # Names that gave C which did not compile (issue 12): an event `stream` (the Kilobot stream hook
 # was <model>_on_stream, the action of such an event), `x` beside `received_x`, and a model
 # name that is not ASCII (avr-gcc refuses such identifiers; it becomes ouvri_re).
-AWKWARD = """num_events: 4
-num_supervisors: 1
-events: [ EV_stream,EV__stream,EV_x,EV_received_x ]
-ev_controllable: [ 1,0,1,0 ]
-ev_shared: [ 1,1,0,0 ]
-sup_events: [ [ 1,1,1,1 ] ]
-sup_init_state: [ 0 ]
-sup_current_state: [ 0 ]
-sup_data_pos: [ 0 ]
-sup_data: [ 4,EV_stream,0,0,EV__stream,0,0,EV_x,0,0,EV_received_x,0,0 ]
-"""
+AWKWARD_EVENTS = ["stream", "_stream", "x", "received_x"]
+AWKWARD = supervisor_yaml(AWKWARD_EVENTS, [1, 0, 1, 0], [set(AWKWARD_EVENTS)], [[[(e, 0) for e in AWKWARD_EVENTS]]],
+                          public=[1, 1, 0, 0])
 
 
 @pytest.mark.parametrize("stem", ["stream", "ouvrière"])
