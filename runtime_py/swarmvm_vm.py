@@ -96,16 +96,21 @@ def _check_args(count):
 
 
 def _poll_lines(events, wrap):
-    """Source lines that call each check ``c<i>`` with its data ``d<i>`` once, in order, and
-    ``add`` the event of each check that is true; ``wrap``: a check that raises raises
-    CallbackError naming its event (``event_name``), else the exception as it is. Written out
-    check by check because a loop over the checks cost a sixth of a step on models with many
-    inputs."""
-    body = [line for i, event in enumerate(events)
-            for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
+    """Source lines that make ``fired``: each check ``c<i>`` called with its data ``d<i>`` once,
+    in order, and the event of each check that is true added; ``wrap``: a check that raises
+    raises CallbackError naming its event (``event_name``), else the exception as it is.
+    Written out check by check because a loop over the checks cost a sixth of a step on models
+    with many inputs; a single check makes its list in one expression."""
+    if len(events) == 1:
+        body = ["e = %d" % events[0]] if wrap else []
+        body += ["fired = [%d] if c0(d0) else []" % events[0]]
+    else:
+        body = ["fired = []", "add = fired.append"]
+        body += [line for i, event in enumerate(events)
+                 for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
     if not wrap:
         return body
-    return (["e = -1", "try:"] + ["    " + line for line in body + ["pass"]]
+    return (["e = -1", "try:"] + ["    " + line for line in body]
             + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
 
 
@@ -126,49 +131,102 @@ _COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or ste
 MAX_COMPILED = 64
 
 
-def _stepper(events, edge, quiet, uniform, strict, chooses, total):
+def _move_lines(sole, total):
+    """Source lines that fire the inputs in ``fired``: each supervisor that has the event moves
+    (``total``: no input can violate, so no check for a missing move), then its action runs.
+    ``sole``: the image has one supervisor, whose state is ``states[0]`` and whose column of
+    each event is ``columns[event]`` (None outside its alphabet)."""
+    if sole:
+        body = ["    for event in fired:",
+                "        column = columns[event]",
+                "        if column is not None:",
+                "            target = column[states[0]]"]
+        indent, sup = "            ", "0"
+    else:
+        body = ["    for event in fired:",
+                "        for sup, column in successors[event]:",
+                "            target = column[states[sup]]"]
+        indent, sup = "            ", "sup"
+    if total:
+        body += [indent + "states[%s] = target" % sup]
+    else:
+        body += [indent + "if target is None:",
+                 indent + "    vm._violate(event, %s)" % sup,
+                 indent + "    states, a = vm.states, (vm._plan or vm._bound())[0]",
+                 indent + "else:",
+                 indent + "    states[%s] = target" % sup]
+    return body + ["        if a[event] is not None:",
+                   "            vm._act(event, a[event])",
+                   "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
+
+
+def _choice_lines(uniform, sole):
+    """Source lines that fire one of the enabled controllable events: the uniform policy's draw
+    (XorShift32.below, inline) or the VM's ``select``, then the event's move, from the
+    remembered states after it (``afters``: one supervisor's state when ``sole``, else every
+    supervisor's, or None when not remembered), and its action."""
+    if sole:
+        body = ["entry = table[states[0]]",
+                "enabled, afters = entry or vm._sole_entry()"]
+    else:
+        body = ["memo = vm._enabled_at",
+                "entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
+                "enabled, afters = entry or vm._enabled_now()"]
+    body += ["if enabled:"]
+    if uniform:
+        body += ["    n = len(enabled)",
+                 "    if n == 1:",
+                 "        k = 0",
+                 "    else:",
+                 "        rng = vm.rng",
+                 "        x = rng.state",
+                 "        x ^= (x << 13) & 0xFFFFFFFF",
+                 "        x ^= x >> 17",
+                 "        x ^= (x << 5) & 0xFFFFFFFF",
+                 "        rng.state = x",
+                 "        k = ((x >> 16) * n) >> 16"]
+    else:
+        body += ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"]
+    body += ["    choice = enabled[k]"] if uniform else []
+    act = ["if a[choice] is not None:", "    vm._act(choice, a[choice])"]
+    if sole:
+        body += ["    states[0] = afters[k]"] + ["    " + line for line in act]
+    else:
+        body += ["    if afters is None:",
+                 "        vm._fire((choice,), a)",
+                 "    else:",
+                 "        states[:] = afters[k]"] + ["        " + line for line in act]
+    return body + ["    fired.append(choice)"]
+
+
+def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole):
     """The maker of a VM's step written out for its plan: the checks of ``events`` polled
     (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
-    inputs, if-quiet control, uniform policy, strict, a controllable event to choose) and, when
-    no input can violate (``total``), the inputs moved without a check. One frame per step,
-    the plan's parts its locals: on the smallest models the step is mostly that fixed cost."""
+    inputs, if-quiet control, uniform policy, strict, a controllable event to choose), the
+    inputs moved without a check when none can violate (``total``), and, for an image of one
+    supervisor (``sole``), its state read as one integer and the enabled events of each of
+    its states in a list (VM._sole_entry). One frame per step, the plan's parts its locals: on
+    the smallest models the step is mostly that fixed cost. A callback that rebinds or loads
+    makes a new plan; after the inputs, a step whose plan is gone chooses out of line
+    (VM._choose), from the VM as it then is."""
     body = ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
-    body += ["fired = []", "add = fired.append"] + _poll_lines(events, True)
+    body += _poll_lines(events, True)
     body += ["a = acts if vm._plan is plan else vm._bound()[0]"]
     if edge:
         body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
                  "fired = [event for event in fired if not previous >> event & 1]",
                  "vm.previous = current"]
-    body += ["if fired:"]
-    if total:
-        body += ["    states = vm.states",
-                 "    for event in fired:",
-                 "        for sup, successor in successors[event]:",
-                 "            states[sup] = successor[states[sup]]",
-                 "        if a[event] is not None:",
-                 "            vm._act(event, a[event])",
-                 "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
+    body += ["states = vm.states", "if fired:"] + _move_lines(sole, total)
+    if quiet or not chooses:
+        body += ["    return fired"]
     else:
-        body += ["    vm._fire(fired, a)"]
-    body += ["    return fired" if quiet or not chooses else "    a = (vm._plan or vm._bound())[0]"]
+        body += ["    if vm._plan is not plan:",
+                 "        return vm._choose(fired)"]
     if chooses:
-        body += ["states = vm.states",
-                 "memo = vm._enabled_at",
-                 "entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
-                 "enabled, afters = entry or vm._enabled_now()",
-                 "if enabled:"]
-        body += (["    k = 0 if len(enabled) == 1 else vm.rng.below(len(enabled))", "    choice = enabled[k]"]
-                 if uniform else ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"])
-        body += ["    if afters is None:",
-                 "        vm._fire((choice,), a)",
-                 "    else:",
-                 "        states[:] = afters[k]",
-                 "        if a[choice] is not None:",
-                 "            vm._act(choice, a[choice])",
-                 "    fired.append(choice)"]
+        body += _choice_lines(uniform, sole)
     body += ["return fired"]
-    key = ("step", events, edge, quiet, uniform, strict, chooses, total)
-    return _compiled(key, ["def make(plan, acts, checks, datas, successors, event_name, CallbackError):",
+    key = ("step", events, edge, quiet, uniform, strict, chooses, total, sole)
+    return _compiled(key, ["def make(plan, acts, checks, datas, successors, columns, table, event_name, CallbackError):",
                            "    def step(vm%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return step"])
 
@@ -181,9 +239,7 @@ def _exact_stepper(events, public_first, chooses):
     body = ["vm = sct.vm",
             "if vm._plan is not vm_plan:",
             "    sct._plan_exact()",
-            "    return sct.run_step()",
-            "fired = []",
-            "add = fired.append"] + _poll_lines(events, False)
+            "    return sct.run_step()"] + _poll_lines(events, False)
     body += ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
     body += ["    true = fired",
              "    fired = list(map(file_index.__getitem__, true))",
@@ -305,6 +361,8 @@ class VM:
         # one lookup where a run keeps to a few combinations (see _enabled_now).
         self._enabled_at: dict | None = {}
         self._met_once = set()      # combinations met once, not yet in _enabled_at
+        # One supervisor: per state, its enabled events and the state after each (_sole_entry).
+        self._sole: list | None = [None] * image.sup_num_states[0] if image.num_supervisors == 1 else None
         # Rank of each event for policy "first": listed events first, the rest by name.
         listed = [self._index(name) for name in self._priority or ()]
         self.rank = ([listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
@@ -444,6 +502,27 @@ class VM:
         entry = memo[key] = (enabled, tuple(afters))
         return entry
 
+    def _sole_entry(self):
+        """(the enabled events at the state of a one-supervisor image, its state after each),
+        remembered in ``_sole``: such a model has few states, so every one met is kept. An
+        event outside the supervisor's alphabet leaves it where it is."""
+        state = self.states[0]
+        enabled = tuple(_bits(self._enabled_mask()))
+        afters = tuple(pairs[0][1][state] if pairs else state for pairs in map(self.successors.__getitem__, enabled))
+        entry = self._sole[state] = (enabled, afters)
+        return entry
+
+    def _choose(self, fired):
+        """The rest of a step whose plan a callback replaced while the inputs fired (a rebind or
+        a load): one enabled controllable event chosen and fired as the written-out step does,
+        out of line, from the VM as it now is; returns ``fired`` with it."""
+        enabled = self.enabled()
+        if enabled:
+            choice = self.select(enabled)
+            self._fire((choice,), self._bound()[0])
+            fired.append(choice)
+        return fired
+
     def _bound(self):
         """The plan: what the step needs of the bindings, the options and the tables, made
         after a bind, a load or a change of option. It is (per event its (action, data) or None,
@@ -456,10 +535,12 @@ class VM:
             acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
             chooses = bool(self.image.controllable)
             plan = self._plan = (acts, chooses)
+            sole = self._sole is not None
+            columns = [pairs[0][1] if pairs else None for pairs in self.successors] if sole else None
             make = _stepper(tuple(e for e, _, _ in polls), self.inputs == "edge", self.control == "if-quiet",
-                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None)
-            step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors,
-                        self.image.event_name, CallbackError)
+                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None, sole)
+            step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors, columns,
+                        self._sole, self.image.event_name, CallbackError)
             self.__dict__["step"] = types.MethodType(step, self)
         return plan
 
@@ -485,15 +566,20 @@ class VM:
                 if target is not None:
                     states[sup] = target
                     continue
-                if self.violations != MAX_VIOLATIONS:
-                    self.violations += 1
-                if self.on_violation is not None:
-                    self.on_violation(event, sup)
-                    states, acts = self.states, self._bound()[0]
+                self._violate(event, sup)
+                states, acts = self.states, self._bound()[0]
             act = acts[event]
             if act is not None:
                 self._act(event, act)
                 states, acts = self.states, self._bound()[0]
+
+    def _violate(self, event, sup):
+        """Supervisor ``sup`` has no move on ``event``: count a violation (the counter stops at
+        MAX_VIOLATIONS) and tell ``on_violation``, which may rebind or set ``states``."""
+        if self.violations != MAX_VIOLATIONS:
+            self.violations += 1
+        if self.on_violation is not None:
+            self.on_violation(event, sup)
 
     def _act(self, event, act):
         """Run an event's bound (action, data); CallbackError if the action raises."""

@@ -189,3 +189,46 @@ def test_a_new_image_needing_an_event_the_application_lacks_is_reported_before_a
     with pytest.raises(vm.UnboundEvents):
         strict.load(image_of(tmp_path, extra, "y.yaml"))
     assert strict.image is before and strict.step() == [1]
+
+
+# LOOP's supervisor beside a second one over go and tick that allows go only after a tick
+# (state 0: tick -> 1; state 1: go -> 1, tick -> 0).
+LOOP_AND_GATE = LOOP.replace("num_supervisors: 1", "num_supervisors: 2").replace(
+    "sup_events: [ [ 1, 1, 1, 1 ] ]", "sup_events: [ [ 1, 1, 1, 1 ], [ 1, 0, 1, 0 ] ]").replace(
+    "sup_init_state: [ 0 ]", "sup_init_state: [ 0, 0 ]").replace("sup_data_pos: [ 0 ]", "sup_data_pos: [ 0, 20 ]").replace(
+    "EV_zmsg, 0, 1 ]", "EV_zmsg, 0, 1, 1, EV_tick, 0, 1, 2, EV_go, 0, 1, EV_tick, 0, 0 ]")
+
+
+def scripted_checks(machine, step):
+    """Binds tick and back to checks that are true on a fixed pattern of the step number."""
+    machine.bind("tick", check=lambda _d: step[0] % 3 == 0)
+    machine.bind("back", check=lambda _d: step[0] % 4 == 1)
+
+
+@pytest.mark.parametrize("model", [LOOP, LOOP_AND_GATE], ids=["one supervisor", "two supervisors"])
+def test_an_action_that_rebinds_during_the_inputs_leaves_the_run_unchanged(vm, tmp_path, model):
+    """An input's action that binds again makes a new plan mid-step; the step finishes out of
+    line (VM._choose) with the same choices and the same generator draws as a run without it."""
+    image = image_of(tmp_path, model)
+    plain, rebinding = vm.VM(image, seed=3), vm.VM(image, seed=3)
+    step = [0]
+    scripted_checks(plain, step)
+    scripted_checks(rebinding, step)
+    rebinding.bind("tick", action=lambda _d: scripted_checks(rebinding, step))
+    runs = {id(plain): [], id(rebinding): []}
+    for machine in (plain, rebinding):
+        for step[0] in range(60):
+            runs[id(machine)].append((machine.step(), list(machine.states), machine.violations))
+    assert runs[id(plain)] == runs[id(rebinding)]
+    assert any(2 in fired for fired, _, _ in runs[id(plain)])     # tick fired: the action ran
+
+
+def test_an_action_that_loads_an_image_finishes_the_step_on_the_new_image(vm, tmp_path):
+    """tick's action swaps the one-supervisor LOOP for LOOP_AND_GATE: the step chooses from the
+    new image's initial states, where the gate disables go, not from LOOP's tables."""
+    machine = vm.VM(image_of(tmp_path, LOOP))
+    gated = image_of(tmp_path, LOOP_AND_GATE, "gated.yaml")
+    loaded: list = []
+    machine.bind("tick", check=lambda _d: not loaded, action=lambda _d: loaded.append(machine.load(gated)))
+    assert machine.step() == [2] and machine.states == [0, 0]
+    assert machine.step() == [] and machine.states == [0, 0]
