@@ -509,7 +509,9 @@ class VM:
         state = self.states[0]
         enabled = tuple(_bits(self._enabled_mask()))
         afters = tuple(pairs[0][1][state] if pairs else state for pairs in map(self.successors.__getitem__, enabled))
-        entry = self._sole[state] = (enabled, afters)
+        table = self._sole
+        assert table is not None, "only the step of a one-supervisor image asks"
+        entry = table[state] = (enabled, afters)
         return entry
 
     def _choose(self, fired):
