@@ -231,42 +231,62 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole):
                      + ["        " + line for line in body] + ["    return step"])
 
 
-def _exact_stepper(events, public_first, chooses):
+def _exact_stepper(events, public_first, chooses, total):
     """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper): the
     checks of ``events`` polled in file order (raising as in the published VM), the true ones
     fired in file order (``public_first``: public ones first, as SCTPub), then the published
-    choice among the enabled events in file order when there are controllable events."""
+    choice among the enabled events in file order when there are controllable events: the k-th
+    with ``k = random.randint(0, 1000000000) % n``, drawn as CPython's randint makes it (randint
+    -> randrange -> _randbelow_with_getrandbits: ``getrandbits(30)`` until at most 10^9) without
+    randint's three Python-level calls, a third of a small model's step, while ``randint`` is
+    the standard one (tests/python/test_sct_exact.py compares the random state step by step). The
+    enabled events come from the VM's per-state list when its image has one supervisor
+    (read from the VM each step: a callback may have loaded another image), else its memo."""
     body = ["vm = sct.vm",
             "if vm._plan is not vm_plan:",
             "    sct._plan_exact()",
             "    return sct.run_step()"] + _poll_lines(events, False)
-    body += ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
-    body += ["    true = fired",
-             "    fired = list(map(file_index.__getitem__, true))",
-             "    vm._fire(true, (vm._plan or vm._bound())[0])",
+    body += ["a = acts", "if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
+    body += ["    states = vm.states"] + _move_lines(False, total)
+    body += ["    fired = list(map(file_index.__getitem__, fired))",
              "    sct.input_buffer = list(fired)",
              "else:",
              "    sct.input_buffer = []"]
     if chooses:
-        body += ["memo = vm._enabled_at",
-                 "entry = memo.get(tuple(vm.states)) if memo is not None else None      # _enabled_now's, inline",
-                 "enabled, afters = entry or vm._enabled_now()",
+        body += ["states = vm.states",
+                 "table = vm._sole",
+                 "if table is not None:",
+                 "    enabled, afters = table[states[0]] or vm._sole_entry()",
+                 "else:",
+                 "    memo = vm._enabled_at",
+                 "    entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
+                 "    enabled, afters = entry or vm._enabled_now()",
                  "if enabled:",
                  "    order = in_file_order.get(enabled)",
                  "    if order is None:",
                  "        order = in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))",
-                 "    choice, k = order[draw() % len(order)]",
-                 "    acts = (vm._plan or vm._bound())[0]",
-                 "    if afters is None:",
-                 "        vm._fire((enabled[k],), acts)",
+                 "    if rnd.randint is randint:      # randint(0, 10**9) as CPython makes it, without its calls",
+                 "        draw = rnd.getrandbits(30)",
+                 "        while draw > 1000000000:",
+                 "            draw = rnd.getrandbits(30)",
                  "    else:",
-                 "        vm.states[:] = afters[k]",
-                 "        if acts[enabled[k]] is not None:",
-                 "            vm._act(enabled[k], acts[enabled[k]])",
+                 "        draw = rnd.randint(0, 1000000000)",
+                 "    choice, k = order[draw % len(order)]",
+                 "    a = (vm._plan or vm._bound())[0]",
+                 "    event = enabled[k]",
+                 "    if afters is None:",
+                 "        vm._fire((event,), a)",
+                 "    else:",
+                 "        if table is not None:",
+                 "            states[0] = afters[k]",
+                 "        else:",
+                 "            states[:] = afters[k]",
+                 "        if a[event] is not None:",
+                 "            vm._act(event, a[event])",
                  "    fired.append(choice)"]
     body += ["sct.last_events = fired"]
-    return _compiled(("exact", events, public_first, chooses),
-                     ["def make(vm_plan, checks, datas, file_index, private, in_file_order, draw):",
+    return _compiled(("exact", events, public_first, chooses, total),
+                     ["def make(vm_plan, acts, checks, datas, successors, file_index, private, in_file_order, rnd, randint):",
                       "    def run_step(sct%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return run_step"])
 
@@ -661,22 +681,7 @@ def replay(vm, rows):
     return list(replay_lines(vm, rows))
 
 
-_RANDINT = random.randint
-
-
-def _published_draw():
-    """``random.randint(0, 1000000000)``, the published VM's draw, from the global generator.
-    While ``random.randint`` is the standard one, CPython's own draw is made directly, bit for
-    bit (randint -> randrange -> Random._randbelow_with_getrandbits: getrandbits(30) until at
-    most 10^9), without randint's three Python-level calls, a third of a small model's exact
-    step; tests/python/test_sct_exact.py checks the two agree."""
-    if random.randint is not _RANDINT:
-        return random.randint(0, 1000000000)
-    getrandbits = random.getrandbits
-    draw = getrandbits(30)
-    while draw > 1000000000:
-        draw = getrandbits(30)
-    return draw
+_RANDINT = random.randint     # the standard one: the exact step makes its draw without calling it
 
 
 class SCT:
@@ -756,9 +761,10 @@ class SCT:
         vm_plan = vm._plan or vm._bound()
         polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
                  for i in self._checks_order if canonical[i] in vm.checks]
-        make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1])
-        step = make(vm_plan, [c for _, c, _ in polls], [d for _, _, d in polls], self._file_index, self._private,
-                    self._in_file_order, _published_draw)
+        make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
+                              vm._total is not None)
+        step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], vm.successors,
+                    self._file_index, self._private, self._in_file_order, random, _RANDINT)
         self.__dict__["run_step"] = types.MethodType(step, self)
 
     def get_events(self):
