@@ -24,8 +24,6 @@ INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
-ENABLED_MEMO_LIMIT = 2048       # state combinations whose enabled set a VM remembers
-MEMO_PROBE = 256                # combinations met once after which a memo that does not pay is dropped
 
 
 def callback_stem(name):
@@ -160,7 +158,19 @@ def _move_lines(sole, total):
                    "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
 
 
-def _choice_lines(uniform, sole):
+def _mask_line(gate_sups):
+    """The source line that makes ``mask``, the controllable events every supervisor allows in
+    its state: an AND over the gates (``g<i>``, the masks by state of supervisor
+    ``gate_sups[i]``) written out, no loop (VM._enabled_mask is the same, out of line)."""
+    return "mask = controllable" + "".join(" & g%d[states[%d]]" % (i, sup) for i, sup in enumerate(gate_sups))
+
+
+def _gate_lines(gate_sups):
+    """The lines of ``make`` that name each gate's masks ``g<i>`` for _mask_line."""
+    return ["    g%d = gates[%d][1]" % (i, i) for i in range(len(gate_sups))]
+
+
+def _choice_lines(uniform, sole, gate_sups):
     """Source lines that fire one of the enabled controllable events: the uniform policy's draw
     (XorShift32.below, inline) or the VM's ``select``, then the event's move, from the
     remembered states after it (``afters``: one supervisor's state when ``sole``, else every
@@ -169,9 +179,10 @@ def _choice_lines(uniform, sole):
         body = ["entry = table[states[0]]",
                 "enabled, afters = entry or vm._sole_entry()"]
     else:
-        body = ["memo = vm._enabled_at",
-                "entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
-                "enabled, afters = entry or vm._enabled_now()"]
+        body = [_mask_line(gate_sups),
+                "enabled = sets.get(mask)",
+                "if enabled is None:",
+                "    enabled = vm._enabled_set(mask)"]
     body += ["if enabled:"]
     if uniform:
         body += ["    n = len(enabled)",
@@ -192,14 +203,12 @@ def _choice_lines(uniform, sole):
     if sole:
         body += ["    states[0] = afters[k]"] + ["    " + line for line in act]
     else:
-        body += ["    if afters is None:",
-                 "        vm._fire((choice,), a)",
-                 "    else:",
-                 "        states[:] = afters[k]"] + ["        " + line for line in act]
+        body += ["    for sup, column in successors[choice]:",
+                 "        states[sup] = column[states[sup]]"] + ["    " + line for line in act]
     return body + ["    fired.append(choice)"]
 
 
-def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole):
+def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups):
     """The maker of a VM's step written out for its plan: the checks of ``events`` polled
     (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
     inputs, if-quiet control, uniform policy, strict, a controllable event to choose), the
@@ -223,15 +232,16 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole):
         body += ["    if vm._plan is not plan:",
                  "        return vm._choose(fired)"]
     if chooses:
-        body += _choice_lines(uniform, sole)
+        body += _choice_lines(uniform, sole, gate_sups)
     body += ["return fired"]
-    key = ("step", events, edge, quiet, uniform, strict, chooses, total, sole)
-    return _compiled(key, ["def make(plan, acts, checks, datas, successors, columns, table, event_name, CallbackError):",
-                           "    def step(vm%s):" % _check_args(len(events))]
+    key = ("step", events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups)
+    return _compiled(key, ["def make(plan, acts, checks, datas, successors, columns, table, controllable, gates, sets,"
+                           " event_name, CallbackError):"]
+                     + _gate_lines(gate_sups) + ["    def step(vm%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return step"])
 
 
-def _exact_stepper(events, public_first, chooses, total):
+def _exact_stepper(events, public_first, chooses, total, gate_sups):
     """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper): the
     checks of ``events`` polled in file order (raising as in the published VM), the true ones
     fired in file order (``public_first``: public ones first, as SCTPub), then the published
@@ -239,55 +249,47 @@ def _exact_stepper(events, public_first, chooses, total):
     with ``k = random.randint(0, 1000000000) % n``, drawn as CPython's randint makes it (randint
     -> randrange -> _randbelow_with_getrandbits: ``getrandbits(30)`` until at most 10^9) without
     randint's three Python-level calls, a third of a small model's step, while ``randint`` is
-    the standard one (tests/python/test_sct_exact.py compares the random state step by step). The
-    enabled events come from the VM's per-state list when its image has one supervisor
-    (read from the VM each step: a callback may have loaded another image), else its memo."""
+    the standard one (tests/python/test_sct_exact.py compares the random state step by step).
+    The enabled events in file order are remembered per enabled mask (SCT._file_order). A
+    callback that rebinds or loads while the inputs fire: the choice is made out of line
+    (SCT._choose)."""
     body = ["vm = sct.vm",
             "if vm._plan is not vm_plan:",
             "    sct._plan_exact()",
             "    return sct.run_step()"] + _poll_lines(events, False)
-    body += ["a = acts", "if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
-    body += ["    states = vm.states"] + _move_lines(False, total)
-    body += ["    fired = list(map(file_index.__getitem__, fired))",
-             "    sct.input_buffer = list(fired)",
+    body += ["a = acts", "states = vm.states", "if fired:"]
+    body += ["    fired.sort(key=private.__getitem__)"] if public_first else []
+    body += _move_lines(False, total)
+    body += ["    inputs = list(map(file_index.__getitem__, fired))",
+             "    sct.input_buffer = inputs",
+             "    if vm._plan is not vm_plan:",
+             "        return sct._choose(inputs)",
              "else:",
-             "    sct.input_buffer = []"]
+             "    inputs = sct.input_buffer = []"]
     if chooses:
-        body += ["states = vm.states",
-                 "table = vm._sole",
-                 "if table is not None:",
-                 "    enabled, afters = table[states[0]] or vm._sole_entry()",
-                 "else:",
-                 "    memo = vm._enabled_at",
-                 "    entry = memo.get(tuple(states)) if memo is not None else None      # _enabled_now's, inline",
-                 "    enabled, afters = entry or vm._enabled_now()",
-                 "if enabled:",
-                 "    order = in_file_order.get(enabled)",
-                 "    if order is None:",
-                 "        order = in_file_order[enabled] = sorted((file_index[c], k) for k, c in enumerate(enabled))",
-                 "    if rnd.randint is randint:      # randint(0, 10**9) as CPython makes it, without its calls",
-                 "        draw = rnd.getrandbits(30)",
+        body += [_mask_line(gate_sups),
+                 "order = orders.get(mask)",
+                 "if order is None:",
+                 "    order = sct._file_order(mask)",
+                 "if order:",
+                 "    if rnd.randint is randint:",
+                 "        draw = getrandbits(30)",
                  "        while draw > 1000000000:",
-                 "            draw = rnd.getrandbits(30)",
+                 "            draw = getrandbits(30)",
                  "    else:",
                  "        draw = rnd.randint(0, 1000000000)",
-                 "    choice, k = order[draw % len(order)]",
-                 "    a = (vm._plan or vm._bound())[0]",
-                 "    event = enabled[k]",
-                 "    if afters is None:",
-                 "        vm._fire((event,), a)",
-                 "    else:",
-                 "        if table is not None:",
-                 "            states[0] = afters[k]",
-                 "        else:",
-                 "            states[:] = afters[k]",
-                 "        if a[event] is not None:",
-                 "            vm._act(event, a[event])",
-                 "    fired.append(choice)"]
-    body += ["sct.last_events = fired"]
-    return _compiled(("exact", events, public_first, chooses, total),
-                     ["def make(vm_plan, acts, checks, datas, successors, file_index, private, in_file_order, rnd, randint):",
-                      "    def run_step(sct%s):" % _check_args(len(events))]
+                 "    choice, event = order[draw % len(order)]",
+                 "    for sup, column in successors[event]:",
+                 "        states[sup] = column[states[sup]]",
+                 "    if a[event] is not None:",
+                 "        vm._act(event, a[event])",
+                 "    sct.last_events = inputs + [choice]",
+                 "    return"]
+    body += ["sct.last_events = inputs[:]"]
+    return _compiled(("exact", events, public_first, chooses, total, gate_sups),
+                     ["def make(vm_plan, acts, checks, datas, successors, controllable, gates, file_index, private, "
+                      "orders, rnd, randint, getrandbits):"]
+                     + _gate_lines(gate_sups) + ["    def run_step(sct%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return run_step"])
 
 
@@ -377,10 +379,6 @@ class VM:
         self._gates = tuple(gates)
         self._replan()
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
-        # The enabled events of each combination of states met (``tuple(states)`` -> events):
-        # one lookup where a run keeps to a few combinations (see _enabled_now).
-        self._enabled_at: dict | None = {}
-        self._met_once = set()      # combinations met once, not yet in _enabled_at
         # One supervisor: per state, its enabled events and the state after each (_sole_entry).
         self._sole: list | None = [None] * image.sup_num_states[0] if image.num_supervisors == 1 else None
         # Rank of each event for policy "first": listed events first, the rest by name.
@@ -485,42 +483,10 @@ class VM:
         """Controllable events enabled by every supervisor, in canonical order."""
         return _bits(self._enabled_mask())
 
-    def _enabled_now(self):
-        """(the enabled events at the current states, a tuple in canonical order; the states
-        after each of them, or None). A combination of states met for the first time gets its
-        events (_enabled_mask); met again, also the states after each event (an enabled
-        event cannot violate: every supervisor that has it defines it here), and the pair is
-        remembered, so that a run that keeps to a few combinations steps by lookups. The memo
-        is dropped at ENABLED_MEMO_LIMIT combinations (memory stays bounded), or earlier when
-        of MEMO_PROBE combinations met under a quarter were met again (a product too big to
-        pay off: its lookups would only cost)."""
-        states, memo, met = self.states, self._enabled_at, self._met_once
-        entry = memo.get(tuple(states)) if memo is not None else None
-        if entry is not None:
-            return entry
-        mask = self._enabled_mask()
-        enabled = self._enabled_sets.get(mask)
-        if enabled is None:
-            enabled = self._enabled_sets[mask] = tuple(_bits(mask))
-        if memo is None:
-            return enabled, None
-        key = tuple(states)
-        if len(met) + len(memo) >= ENABLED_MEMO_LIMIT or (len(met) >= MEMO_PROBE and 4 * len(memo) < len(met)):
-            self._enabled_at = None
-            met.clear()
-            return enabled, None
-        if key not in met:
-            met.add(key)
-            return enabled, None
-        afters = []
-        for event in enabled:
-            after = list(states)
-            for sup, successor in self.successors[event]:
-                after[sup] = successor[after[sup]]
-            afters.append(tuple(after))
-        met.discard(key)
-        entry = memo[key] = (enabled, tuple(afters))
-        return entry
+    def _enabled_set(self, mask):
+        """The events of an enabled ``mask``, a tuple in canonical order, remembered per mask."""
+        enabled = self._enabled_sets[mask] = tuple(_bits(mask))
+        return enabled
 
     def _sole_entry(self):
         """(the enabled events at the state of a one-supervisor image, its state after each),
@@ -560,9 +526,11 @@ class VM:
             sole = self._sole is not None
             columns = [pairs[0][1] if pairs else None for pairs in self.successors] if sole else None
             make = _stepper(tuple(e for e, _, _ in polls), self.inputs == "edge", self.control == "if-quiet",
-                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None, sole)
+                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None, sole,
+                            tuple(sup for sup, _ in self._gates))
             step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors, columns,
-                        self._sole, self.image.event_name, CallbackError)
+                        self._sole, self.image.controllable, self._gates, self._enabled_sets, self.image.event_name,
+                        CallbackError)
             self.__dict__["step"] = types.MethodType(step, self)
         return plan
 
@@ -727,7 +695,7 @@ class SCT:
             for i, c in enumerate(self._canonical):
                 self._file_index[c] = i
             self._private = [0 if image.public >> c & 1 else 1 for c in range(image.num_events)]
-            self._in_file_order: dict = {}
+            self._orders: dict = {}     # enabled mask -> _file_order's list
 
     @property
     def sup_current_state(self):
@@ -745,12 +713,10 @@ class SCT:
         """One step; ``last_events`` are the events it applied and ``input_buffer`` the
         uncontrollable ones whose check was true (indices as in ``EV``). In exact mode this
         runs once per plan of the VM: it installs the step written out for it (_plan_exact)."""
-        if not self.exact:
-            fired = self.vm.step()
-            self.last_events = fired
-            self.input_buffer = [e for e in fired if not self.ev_controllable[e]]
-            return
-        self._plan_exact()
+        if self.exact:
+            self._plan_exact()
+        else:
+            self.__dict__["run_step"] = types.MethodType(_canonical_run_step, self)
         return self.run_step()
 
     def _plan_exact(self):
@@ -761,14 +727,42 @@ class SCT:
         vm_plan = vm._plan or vm._bound()
         polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
                  for i in self._checks_order if canonical[i] in vm.checks]
+        gate_sups = tuple(sup for sup, _ in vm._gates)
         make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
-                              vm._total is not None)
+                              vm._total is not None, gate_sups)
         step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], vm.successors,
-                    self._file_index, self._private, self._in_file_order, random, _RANDINT)
+                    vm.image.controllable, vm._gates, self._file_index, self._private, self._orders, random,
+                    _RANDINT, random.getrandbits)
         self.__dict__["run_step"] = types.MethodType(step, self)
+
+    def _file_order(self, mask):
+        """The enabled events of ``mask`` in file order, as (file index, canonical index) pairs,
+        remembered per mask: the published choice takes the k-th of them."""
+        order = self._orders[mask] = sorted((self._file_index[e], e) for e in _bits(mask))
+        return order
+
+    def _choose(self, inputs):
+        """The published choice of a step whose VM plan a callback replaced while the inputs
+        fired (a rebind or a load), out of line, from the VM as it now is: ``randint`` itself
+        draws (the written-out step makes the same number without calling it)."""
+        vm = self.vm
+        order = sorted((self._file_index[e], e) for e in vm.enabled())
+        if order:
+            choice, event = order[random.randint(0, 1000000000) % len(order)]
+            vm._fire((event,), vm._bound()[0])
+            self.last_events = inputs + [choice]
+        else:
+            self.last_events = inputs[:]
 
     def get_events(self):
         return self.EV, self.ev_controllable
+
+
+def _canonical_run_step(sct):
+    """SCT.run_step with ``exact=False``, installed on the object by the first run_step: the
+    VM's step, whose events are its inputs, then at most one controllable event."""
+    fired = sct.last_events = sct.vm.step()
+    sct.input_buffer = fired[:-1] if fired and sct.ev_controllable[fired[-1]] else fired[:]
 
 
 class SCTPub(SCT):

@@ -233,3 +233,34 @@ def test_the_exact_draw_defers_to_a_replaced_randint(vm, monkeypatch, tmp_path):
         chosen.extend(sct.last_events)
     assert chosen == [1, 0, 1] and [sct.EV[n] for n in ("EV_b", "EV_a")] == [0, 1]
     assert calls == [(0, 1000000000)] * 3
+
+
+@pytest.mark.parametrize("exact", [True, False], ids=["exact", "canonical"])
+def test_an_action_that_registers_again_leaves_the_run_unchanged(vm, exact):
+    """An input's action that calls add_callback again makes a new VM plan while the inputs
+    fire; the step finishes out of line with the same choice, the same draws (exact mode: the
+    global random state) and the same last_events and input_buffer as a run without it."""
+    path = next(p for p in CORPUS if p.endswith("/uav.yaml"))
+    runs = []
+    for again in (False, True):
+        sct = vm.SCT(path, exact=exact)
+        step = [0]
+        for name, index in sct.EV.items():
+            if sct.ev_controllable[index]:
+                continue
+            def check(_d, i=index):
+                return (step[0] * 13 + i * 5) % 7 < 2
+            action = None
+            if again:
+                def action(_d, index=index, check=check):
+                    sct.add_callback(index, None, check, None)
+            sct.add_callback(index, action, check, None)
+        random.seed(3)
+        rows = []
+        for step[0] in range(200):
+            sct.run_step()
+            rows.append((list(sct.last_events), list(sct.input_buffer), list(sct.sup_current_state),
+                         random.getstate()))
+        runs.append(rows)
+    assert runs[0] == runs[1]
+    assert any(len(row[1]) > 0 and len(row[0]) > len(row[1]) for row in runs[0])   # inputs, then a choice
