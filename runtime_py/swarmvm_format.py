@@ -340,11 +340,12 @@ class Image:
         last = ends.pop()
         if last > num_transitions or ends != self.state_first:
             return False
+        # Only a supervisor with no more states than the largest target a state follows can have
+        # one outside it: usually none or few are looked at one by one.
         targets = self.targets
-        if len(counts) == 1:
-            return max(targets[ends[0]:last], default=0) < counts[0]
+        top = max(targets[ends[0]:last], default=0)
         ends.append(last)
-        return all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(bounds, counts))
+        return all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(bounds, counts) if c <= top)
 
     def event_name(self, event: int) -> str:
         """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
