@@ -194,9 +194,9 @@ _Tables = Tuple[int, int, List[int], List[int], List[int], List[int], List[int],
                 Optional[List[int]]]
 
 
-def _tables(raw: bytes, num_supervisors: int, num_states: int, num_transitions: int, state_width: int,
-            mask_bytes: int, probs: bool) -> _Tables:
-    """The fixed-size sections decoded: (controllable, public, then the columns of the
+def _tables(raw: bytes, num_supervisors: int, num_states: int, mask_bytes: int, targets_at: int, num_transitions: int,
+            state_width: int, probs: bool) -> _Tables:
+    """The fixed-size sections decoded (the targets at ``targets_at``): (controllable, public, then the columns of the
     supervisor records, of the state records, the targets and the probabilities or None), each
     column a list. One struct call unpacks all the records and their columns are cut out of its
     result by strided slices; targets and probabilities are one array each (``list`` of the
@@ -214,13 +214,11 @@ def _tables(raw: bytes, num_supervisors: int, num_states: int, num_transitions: 
         controllable, public = int.from_bytes(controllable, "little"), int.from_bytes(public, "little")
         sup_alphabet = list(map(int.from_bytes, sup_alphabet, itertools.repeat(_LITTLE)))
         state_defined = list(map(int.from_bytes, state_defined, itertools.repeat(_LITTLE)))
-    pos = HEADER_SIZE + 2 * mask_bytes + num_supervisors * (mask_bytes + SUPERVISOR_RECORD.size) \
-        + num_states * (mask_bytes + STATE_RECORD.size)
-    targets = (list(raw[pos:pos + num_transitions]) if state_width == 1
-               else list(struct.unpack_from("<%dH" % num_transitions, raw, pos)))
+    targets = (list(raw[targets_at:targets_at + num_transitions]) if state_width == 1
+               else list(struct.unpack_from("<%dH" % num_transitions, raw, targets_at)))
     return (controllable, public, sup_alphabet, list(records[3:states:4]), list(records[4:states:4]),
             list(records[5:states:4]), state_defined, list(records[states + 1::2]), targets,
-            list(struct.unpack_from("<%dH" % num_transitions, raw, pos + num_transitions * state_width))
+            list(struct.unpack_from("<%dH" % num_transitions, raw, targets_at + num_transitions * state_width))
             if probs else None)
 
 
@@ -277,8 +275,9 @@ class Image:
             raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (flags, KNOWN_FLAGS))
         probs = bool(flags & FLAG_PROBS)
         end = size - CRC_SIZE
-        pos = (HEADER_SIZE + 2 * mask_bytes + supervisors * (mask_bytes + SUPERVISOR_RECORD.size)
-               + states * (mask_bytes + STATE_RECORD.size) + transitions * (width + (PROB.size if probs else 0)))
+        targets_at = (HEADER_SIZE + 2 * mask_bytes + supervisors * (mask_bytes + SUPERVISOR_RECORD.size)
+                      + states * (mask_bytes + STATE_RECORD.size))
+        pos = targets_at + transitions * (width + (PROB.size if probs else 0))
         if pos > end:
             raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
         names = order = state_order = None
@@ -288,8 +287,8 @@ class Image:
             order, state_order, pos = _order(raw, pos, end, events, states)
         if pos != end:
             raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
-        image = cls(raw, events, supervisors, *_tables(raw, supervisors, states, transitions, width, mask_bytes, probs),
-                    names, order, state_order)
+        image = cls(raw, events, supervisors, *_tables(raw, supervisors, states, mask_bytes, targets_at, transitions,
+                                                       width, probs), names, order, state_order)
         image._check_indices(states, transitions)
         return image
 
@@ -344,6 +343,8 @@ class Image:
         # one outside it: usually none or few are looked at one by one.
         targets = self.targets
         top = max(targets[ends[0]:last], default=0)
+        if top < min(counts):
+            return True
         ends.append(last)
         return all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(bounds, counts) if c <= top)
 

@@ -287,13 +287,13 @@ class VM:
                 gates.append((sup, [(mask & controllable) | outside for mask in defined]))
             if alphabet & ~controllable & ~everywhere:
                 inputs_total = False
-            starts = state_first[first:first + count]
+            states = list(zip(defined, state_first[first:first + count]))
             # A column per event, one comprehension each: the successor is at the event's rank
             # among the state's defined events (no Python loop per transition).
             for e in _bits(alphabet):
                 bit, below = 1 << e, (1 << e) - 1
                 successors[e] += ((sup, [targets[base + (mask & below).bit_count()] if mask & bit else None
-                                         for mask, base in zip(defined, starts)]),)
+                                         for mask, base in states]),)
         self.successors = successors
         # When no state of any supervisor leaves an uncontrollable event undefined, no input can
         # violate, and the step moves the inputs by these successors without a check (else None).
