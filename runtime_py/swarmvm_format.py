@@ -281,8 +281,9 @@ class Image:
         if pos > end:
             raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
         names = order = state_order = None
+        order_size = events + 2 * states if flags & FLAG_ORDER else 0
         if flags & FLAG_NAMES:
-            names, pos = _names(raw, pos, end, events)
+            names, pos = _names(raw, pos, end - order_size, end, events)
         if flags & FLAG_ORDER:
             order, state_order, pos = _order(raw, pos, end, events, states)
         if pos != end:
@@ -362,41 +363,45 @@ class Image:
         return self.names.index(bare)
 
 
-def _names(raw: bytes, pos: int, end: int, events: int) -> Tuple[List[str], int]:
+def _names(raw: bytes, pos: int, stop: int, end: int, events: int) -> Tuple[List[str], int]:
     """The event names at ``pos`` and the position after them, once each is known to end before
-    the checksum at ``end`` and to hold NAME_CHARS only. The names are walked with one
-    comparison each and their bytes checked together by one ``translate``; on a defect,
-    _name_defect finds the first, to name it."""
-    names, start = [], pos
-    for _ in range(events):
-        if pos >= end:
-            break
-        after = pos + 1 + raw[pos]
-        names.append(raw[pos + 1:after])
-        pos = after
-    else:
-        if pos <= end and not b"".join(names).translate(None, _NAME_BYTES):
-            return list(map(bytes.decode, names)), pos
-    raise _name_defect(raw, start, end, events)
+    the checksum at ``end`` and to hold NAME_CHARS only; ImageError (LAYOUT) otherwise.
+
+    A well-formed section that ends at ``stop`` (where the sections after it must begin) is
+    split in a few C-level calls, without a Python step per name: its bytes that cannot be in
+    a name are then exactly the length bytes, and the pieces between them the names, each as
+    long as its length byte says. Any other section (a defect, or a name of 48 characters or
+    more, whose length byte is a name character) is walked name by name (_walk_names)."""
+    section = raw[pos:stop]
+    lengths = section.translate(None, _NAME_BYTES)
+    names = section.translate(_NAME_SPLIT).decode().split("\0")
+    if len(lengths) == events and [*map(len, names)] == [0, *lengths]:
+        return names[1:], stop
+    return _walk_names(raw, pos, end, events)
 
 
 _NAME_BYTES = bytes(sorted(NAME_CHARS))
+# Each byte that cannot be in a name (a length byte) to NUL, the others to themselves.
+_NAME_SPLIT = bytes(value if value in NAME_CHARS else 0 for value in range(256))
 
 
-def _name_defect(raw: bytes, pos: int, end: int, events: int) -> ImageError:
-    """The error naming the first defect of the names section at ``pos`` (_names found one)."""
+def _walk_names(raw: bytes, pos: int, end: int, events: int) -> Tuple[List[str], int]:
+    """_names one name at a time: the names and the position after them, or ImageError (LAYOUT)
+    naming the first defect."""
+    names = []
     for event in range(events):
         if pos >= end:
-            return _layout_error("image names section ends at event %d of %d" % (event, events))
+            raise _layout_error("image names section ends at event %d of %d" % (event, events))
         size = raw[pos]
         name = raw[pos + 1:pos + 1 + size]
         if pos + 1 + size > end:
-            return _layout_error("image event %d's name runs past the checksum at byte %d" % (event, end))
+            raise _layout_error("image event %d's name runs past the checksum at byte %d" % (event, end))
         if not NAME_CHARS.issuperset(name):
-            return _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
-                                 % (event, name))
+            raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
+                                % (event, name))
+        names.append(name.decode("ascii"))
         pos += 1 + size
-    raise AssertionError("unreachable: _names found a defect")
+    return names, pos
 
 
 def _order(raw: bytes, pos: int, end: int, events: int, states: int) -> Tuple[List[int], List[int], int]:
