@@ -277,7 +277,8 @@ class VM:
         successors: list = [()] * events
         gates = []
         inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
-        targets, state_defined, state_first = image.targets, image.state_defined, image.state_first
+        targets, state_defined = image.targets, image.state_defined
+        pairs = list(zip(state_defined, image.state_first))     # each state's (defined events, first successor)
         for sup, first, count, alphabet in zip(range(image.num_supervisors), image.sup_first_state,
                                                image.sup_num_states, image.sup_alphabet):
             defined = state_defined[first:first + count]
@@ -287,7 +288,7 @@ class VM:
                 gates.append((sup, [(mask & controllable) | outside for mask in defined]))
             if alphabet & ~controllable & ~everywhere:
                 inputs_total = False
-            states = list(zip(defined, state_first[first:first + count]))
+            states = pairs[first:first + count]
             # A column per event, one comprehension each: the successor is at the event's rank
             # among the state's defined events (no Python loop per transition).
             for e in _bits(alphabet):
