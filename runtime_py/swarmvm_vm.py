@@ -291,10 +291,13 @@ class VM:
             states = pairs[first:first + count]
             # A column per event, one comprehension each: the successor is at the event's rank
             # among the state's defined events (no Python loop per transition).
-            for e in _bits(alphabet):
-                bit, below = 1 << e, (1 << e) - 1
-                successors[e] += ((sup, [targets[base + (mask & below).bit_count()] if mask & bit else None
-                                         for mask, base in states]),)
+            rest = alphabet
+            while rest:     # each event of the alphabet (as _bits), lowest first
+                bit = rest & -rest
+                rest ^= bit
+                below = bit - 1
+                successors[below.bit_length()] += ((sup, [targets[base + (mask & below).bit_count()] if mask & bit
+                                                          else None for mask, base in states]),)
         self.successors = successors
         # When no state of any supervisor leaves an uncontrollable event undefined, no input can
         # violate, and the step moves the inputs by these successors without a check (else None).
