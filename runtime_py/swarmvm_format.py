@@ -170,7 +170,7 @@ def _checked_fields(raw: bytes) -> tuple:
     if fields[1] != FORMAT_VERSION:
         raise ImageError(ErrorCode.VERSION, "image format version %d, this VM reads version %d"
                          % (fields[1], FORMAT_VERSION))
-    if binascii.crc_hqx(raw.translate(_REVERSED), 0xFFFF):
+    if binascii.crc_hqx(raw.translate(_REVERSED), 0xFFFF):      # 0xFFFF: crc16's start, bit-reversed
         end = size - CRC_SIZE
         raise ImageError(ErrorCode.CRC, "image checksum mismatch (stored 0x%04x, computed 0x%04x)"
                          % (_u16(raw, end), crc16(raw[:end])))
@@ -196,13 +196,13 @@ _Tables = Tuple[int, int, List[int], List[int], List[int], List[int], List[int],
 
 def _tables(raw: bytes, num_supervisors: int, num_states: int, mask_bytes: int, targets_at: int, num_transitions: int,
             state_width: int, probs: bool) -> _Tables:
-    """The fixed-size sections decoded (the targets at ``targets_at``): (controllable, public, then the columns of the
-    supervisor records, of the state records, the targets and the probabilities or None), each
-    column a list. One struct call unpacks all the records and their columns are cut out of its
-    result by strided slices; targets and probabilities are one array each (``list`` of the
-    bytes when a target is one byte). So no Python code runs per record, but for masks of other
-    widths than 1, 2, 4 or 8 bytes (one ``int.from_bytes`` each, in C): a Python loop per record
-    was most of a large image's parse."""
+    """The fixed-size sections decoded, the targets at ``targets_at`` (_Tables: controllable,
+    public, then the columns of the supervisor records, of the state records, the targets and the
+    probabilities or None, each column a list). One struct call unpacks all the records and their
+    columns are cut out of its result by strided slices; targets and probabilities are one array
+    each (``list`` of the bytes when a target is one byte). So no Python code runs per record,
+    but for masks of other widths than 1, 2, 4 or 8 bytes (one ``int.from_bytes`` each, in C): a
+    Python loop per record was most of a large image's parse."""
     code = _MASK_CODES.get(mask_bytes)
     mask = code or "%ds" % mask_bytes
     records = struct.unpack_from("<" + mask * 2 + (mask + "3H") * num_supervisors + (mask + "H") * num_states,
@@ -370,8 +370,8 @@ def _names(raw: bytes, pos: int, stop: int, end: int, events: int) -> Tuple[List
     A well-formed section that ends at ``stop`` (where the sections after it must begin) is
     split in a few C-level calls, without a Python step per name: its bytes that cannot be in
     a name are then exactly the length bytes, and the pieces between them the names, each as
-    long as its length byte says. Any other section (a defect, or a name of 48 characters or
-    more, whose length byte is a name character) is walked name by name (_walk_names)."""
+    long as its length byte says. Any other section (a defect, or a name whose length byte is
+    also a name character: 48 characters or more) is walked name by name (_walk_names)."""
     section = raw[pos:stop]
     lengths = section.translate(None, _NAME_BYTES)
     names = section.translate(_NAME_SPLIT).decode().split("\0")
