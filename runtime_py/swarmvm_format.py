@@ -15,7 +15,7 @@ import enum
 import itertools
 import operator
 import struct
-from typing import Dict, List, NamedTuple, Optional
+from typing import Dict, List, Literal, NamedTuple, Optional, Tuple
 
 __all__ = ["ErrorCode", "Header", "Image", "ImageError", "assemble", "crc16", "read_header"]
 
@@ -147,25 +147,37 @@ def assemble(num_events: int, num_supervisors: int, num_states: int, num_transit
 def read_header(raw: bytes) -> Header:
     """The header of ``raw`` once the checks before the layout passed (length, magic, version,
     CRC, in that order); :class:`ImageError` with the first that fails."""
+    return Header._make(_checked_fields(bytes(raw)))
+
+
+def _checked_fields(raw: bytes) -> tuple:
+    """read_header's checks, giving the header's fields as HEADER unpacks them (a plain tuple:
+    Image.parse does not need a Header made). The checksum is checked by its residue: the CRC
+    of the bit-reversed image, stored checksum included, is 0 exactly when the checksum is
+    right, so a valid image costs one translate and one ``crc_hqx`` call, and the computed
+    value the message names is only worked out for a wrong one."""
     size = len(raw)
     if size < MIN_IMAGE_SIZE:
         raise ImageError(ErrorCode.LENGTH, "image truncated: %d bytes, the header alone needs %d" % (size, MIN_IMAGE_SIZE))
     if size > MAX_IMAGE_SIZE:
         raise ImageError(ErrorCode.LENGTH, "image of %d bytes or more, over the format's maximum of %d"
                          % (size, MAX_IMAGE_SIZE))
-    header = Header.unpack(raw)
-    if header.length != size:
-        raise ImageError(ErrorCode.LENGTH, "image length field says %d bytes, got %d" % (header.length, size))
-    if header.magic != MAGIC:
-        raise ImageError(ErrorCode.MAGIC, "not a swarmvm table image (magic %r, expected %r)" % (header.magic, MAGIC))
-    if header.version != FORMAT_VERSION:
+    fields = HEADER.unpack_from(raw)
+    if fields[_LENGTH] != size:
+        raise ImageError(ErrorCode.LENGTH, "image length field says %d bytes, got %d" % (fields[_LENGTH], size))
+    if fields[0] != MAGIC:
+        raise ImageError(ErrorCode.MAGIC, "not a swarmvm table image (magic %r, expected %r)" % (fields[0], MAGIC))
+    if fields[1] != FORMAT_VERSION:
         raise ImageError(ErrorCode.VERSION, "image format version %d, this VM reads version %d"
-                         % (header.version, FORMAT_VERSION))
-    end = size - CRC_SIZE
-    stored, computed = _u16(raw, end), crc16(raw[:end])
-    if stored != computed:
-        raise ImageError(ErrorCode.CRC, "image checksum mismatch (stored 0x%04x, computed 0x%04x)" % (stored, computed))
-    return header
+                         % (fields[1], FORMAT_VERSION))
+    if binascii.crc_hqx(raw.translate(_REVERSED), 0xFFFF):      # 0xFFFF: crc16's start, bit-reversed
+        end = size - CRC_SIZE
+        raise ImageError(ErrorCode.CRC, "image checksum mismatch (stored 0x%04x, computed 0x%04x)"
+                         % (_u16(raw, end), crc16(raw[:end])))
+    return fields
+
+
+_LENGTH = Header._fields.index("length")
 
 
 def _layout_error(message: str) -> ImageError:
@@ -176,26 +188,42 @@ def _u16(raw: bytes, pos: int) -> int:
     return raw[pos] | (raw[pos + 1] << 8)
 
 
-def _numbers(raw: bytes, pos: int, count: int, width: int) -> List[int]:
-    """``count`` little-endian unsigned numbers of ``width`` (1 or 2) bytes at ``pos``."""
-    chunk = raw[pos:pos + count * width]
-    return list(chunk) if width == 1 else list(struct.unpack("<%dH" % count, chunk))
+# controllable, public; per supervisor alphabet, first state, state count, initial state; per state
+# defined events, first successor; targets; probabilities or None.
+_Tables = Tuple[int, int, List[int], List[int], List[int], List[int], List[int], List[int], List[int],
+                Optional[List[int]]]
 
 
-def _records(raw: bytes, pos: int, count: int, mask_bytes: int, fields: struct.Struct) -> tuple:
-    """``count`` records of a mask then ``fields`` at ``pos``: (the masks as ints, then each
-    field's values), each a list, and the position after them. All the records are unpacked
-    by one struct call and the columns cut out of its result by strided slices, so no Python
-    code runs per record but for a mask wider than 8 bytes (over 64 events): the per-record
-    decoding was most of a large image's parse."""
-    code, codes = _MASK_CODES.get(mask_bytes), fields.format.lstrip("<")
-    flat = struct.unpack_from("<" + ((code or "%ds" % mask_bytes) + codes) * count, raw, pos)
-    step = 1 + len(codes)       # values per record: the mask, then one per field
-    masks = list(flat[0::step]) if code else [int.from_bytes(mask, "little") for mask in flat[0::step]]
-    return (masks,) + tuple(list(flat[i::step]) for i in range(1, step)) + (pos + count * (mask_bytes + fields.size),)
+def _tables(raw: bytes, num_supervisors: int, num_states: int, mask_bytes: int, targets_at: int, num_transitions: int,
+            state_width: int, probs: bool) -> _Tables:
+    """The fixed-size sections decoded, the targets at ``targets_at`` (_Tables: controllable,
+    public, then the columns of the supervisor records, of the state records, the targets and the
+    probabilities or None, each column a list). One struct call unpacks all the records and their
+    columns are cut out of its result by strided slices; targets and probabilities are one array
+    each (``list`` of the bytes when a target is one byte). So no Python code runs per record,
+    but for masks of other widths than 1, 2, 4 or 8 bytes (one ``int.from_bytes`` each, in C): a
+    Python loop per record was most of a large image's parse."""
+    code = _MASK_CODES.get(mask_bytes)
+    mask = code or "%ds" % mask_bytes
+    records = struct.unpack_from("<" + mask * 2 + (mask + "3H") * num_supervisors + (mask + "H") * num_states,
+                                 raw, HEADER_SIZE)
+    states = 2 + 4 * num_supervisors
+    controllable, public = records[0], records[1]
+    sup_alphabet, state_defined = list(records[2:states:4]), list(records[states::2])
+    if not code:
+        controllable, public = int.from_bytes(controllable, "little"), int.from_bytes(public, "little")
+        sup_alphabet = list(map(int.from_bytes, sup_alphabet, itertools.repeat(_LITTLE)))
+        state_defined = list(map(int.from_bytes, state_defined, itertools.repeat(_LITTLE)))
+    targets = (list(raw[targets_at:targets_at + num_transitions]) if state_width == 1
+               else list(struct.unpack_from("<%dH" % num_transitions, raw, targets_at)))
+    return (controllable, public, sup_alphabet, list(records[3:states:4]), list(records[4:states:4]),
+            list(records[5:states:4]), state_defined, list(records[states + 1::2]), targets,
+            list(struct.unpack_from("<%dH" % num_transitions, raw, targets_at + num_transitions * state_width))
+            if probs else None)
 
 
 _MASK_CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}     # masks of these widths unpack as integers
+_LITTLE: Literal["little"] = "little"
 
 
 class Image:
@@ -239,40 +267,35 @@ class Image:
         """Check and decode an image; :class:`ImageError` with the code and a message naming the
         first defect. It makes every check of the C reader (svm_validate), in its order."""
         raw = bytes(raw)
-        h = read_header(raw)
-        if h.num_events == 0 or h.num_supervisors == 0 or h.state_width not in STATE_WIDTHS \
-                or h.mask_bytes != (h.num_events + 7) // 8:
+        _, _, flags, events, supervisors, states, transitions, width, mask_bytes, size = _checked_fields(raw)
+        if events == 0 or supervisors == 0 or width not in STATE_WIDTHS or mask_bytes != (events + 7) // 8:
             raise _layout_error("image header inconsistent (events %d, mask bytes %d, state width %d, supervisors %d)"
-                                % (h.num_events, h.mask_bytes, h.state_width, h.num_supervisors))
-        if h.flags & ~KNOWN_FLAGS:
-            raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (h.flags, KNOWN_FLAGS))
-        names = _check_sections(raw, h)
-        m = h.mask_bytes
-        pos = HEADER_SIZE + 2 * m
-        controllable = int.from_bytes(raw[HEADER_SIZE:HEADER_SIZE + m], "little")
-        public = int.from_bytes(raw[HEADER_SIZE + m:pos], "little")
-        sup_alphabet, sup_first, sup_count, sup_init, pos = _records(raw, pos, h.num_supervisors, m, SUPERVISOR_RECORD)
-        state_defined, state_first, pos = _records(raw, pos, h.num_states, m, STATE_RECORD)
-        width = h.state_width
-        targets = _numbers(raw, pos, h.num_transitions, width)
-        pos += h.num_transitions * width
-        probs = None
-        if h.flags & FLAG_PROBS:
-            probs = _numbers(raw, pos, h.num_transitions, PROB.size)
-            pos += h.num_transitions * PROB.size
-        if names is not None:
-            pos += h.num_events + sum(map(len, names))
-        order = state_order = None
-        if h.flags & FLAG_ORDER:
-            order, state_order = _numbers(raw, pos, h.num_events, 1), _numbers(raw, pos + h.num_events, h.num_states, 2)
-        image = cls(raw, h.num_events, h.num_supervisors, controllable, public, sup_alphabet, sup_first,
-                    sup_count, sup_init, state_defined, state_first, targets, probs, names, order, state_order)
-        image._check_indices(h)
+                                % (events, mask_bytes, width, supervisors))
+        if flags & ~KNOWN_FLAGS:
+            raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (flags, KNOWN_FLAGS))
+        probs = bool(flags & FLAG_PROBS)
+        end = size - CRC_SIZE
+        targets_at = (HEADER_SIZE + 2 * mask_bytes + supervisors * (mask_bytes + SUPERVISOR_RECORD.size)
+                      + states * (mask_bytes + STATE_RECORD.size))
+        pos = targets_at + transitions * (width + (PROB.size if probs else 0))
+        if pos > end:
+            raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
+        names = order = state_order = None
+        order_size = events + 2 * states if flags & FLAG_ORDER else 0
+        if flags & FLAG_NAMES:
+            names, pos = _names(raw, pos, end - order_size, end, events)
+        if flags & FLAG_ORDER:
+            order, state_order, pos = _order(raw, pos, end, events, states)
+        if pos != end:
+            raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
+        image = cls(raw, events, supervisors, *_tables(raw, supervisors, states, mask_bytes, targets_at, transitions,
+                                                       width, probs), names, order, state_order)
+        image._check_indices(states, transitions)
         return image
 
-    def _check_indices(self, h: Header) -> None:
+    def _check_indices(self, num_states: int, num_transitions: int) -> None:
         """Every index the step follows stays inside the image, every mask inside E events."""
-        if self._indices_fit(h):
+        if self._indices_fit(num_states, num_transitions):
             return
         outside = ~((1 << self.num_events) - 1)
         if (self.controllable | self.public) & outside:
@@ -280,10 +303,10 @@ class Image:
         expected_first = 0
         for s in range(self.num_supervisors):
             first, count = self.sup_first_state[s], self.sup_num_states[s]
-            if first != expected_first or count == 0 or self.sup_initial[s] >= count or count > h.num_states - first:
+            if first != expected_first or count == 0 or self.sup_initial[s] >= count or count > num_states - first:
                 raise _layout_error("image supervisor %d: states %d..%d (initial %d) do not follow the previous "
                                     "supervisor's inside the %d states" % (s, first, first + count - 1,
-                                                                          self.sup_initial[s], h.num_states))
+                                                                          self.sup_initial[s], num_states))
             if self.sup_alphabet[s] & outside:
                 raise _layout_error("image supervisor %d's alphabet names events beyond the %d events" % (s, self.num_events))
             for g in range(first, first + count):      # find the first defect, to name it
@@ -291,31 +314,40 @@ class Image:
                 if defined & outside:
                     raise _layout_error("image state %d has transitions on events beyond the %d events" % (g, self.num_events))
                 successors = bin(defined).count("1")
-                if succ + successors > h.num_transitions:
+                if succ + successors > num_transitions:
                     raise _layout_error("image state %d has successors outside the target section" % g)
                 for t in range(succ, succ + successors):
                     if self.targets[t] >= count:
                         raise _layout_error("image transition %d leads outside its supervisor %d" % (t, s))
             expected_first = first + count
-        if expected_first != h.num_states:
-            raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, h.num_states))
+        if expected_first != num_states:
+            raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, num_states))
 
-    def _indices_fit(self, h: Header) -> bool:
+    def _indices_fit(self, num_states: int, num_transitions: int) -> bool:
         """Whether the image passes _check_indices's checks, in a few C-level passes over the
         whole image for the usual layout (each state's successors right after the previous
         state's); False otherwise, and _check_indices looks supervisor by supervisor and state
-        by state for the first defect, to name it."""
-        counts, firsts = self.sup_num_states, self.sup_first_state
-        if (self.controllable | self.public | max(self.sup_alphabet) | max(self.state_defined, default=0)) \
-                >> self.num_events or min(counts) == 0 or any(map(operator.ge, self.sup_initial, counts)):
+        by state for the first defect, to name it. (A count of 0 fails the initial state's check.)"""
+        counts = self.sup_num_states
+        if any(map(operator.ge, self.sup_initial, counts)):
             return False
-        bounds = list(itertools.accumulate(counts, initial=0))
-        if bounds[:-1] != firsts or bounds[-1] != h.num_states:
+        bounds = [0, *itertools.accumulate(counts)]
+        if bounds.pop() != num_states or bounds != self.sup_first_state:
             return False
-        ends = list(itertools.accumulate(map(int.bit_count, self.state_defined), initial=self.state_first[0]))
+        if (self.controllable | self.public | max(self.sup_alphabet) | max(self.state_defined)) >> self.num_events:
+            return False
+        ends = [*itertools.accumulate(map(int.bit_count, self.state_defined), initial=self.state_first[0])]
+        last = ends.pop()
+        if last > num_transitions or ends != self.state_first:
+            return False
+        # Only a supervisor with no more states than the largest target a state follows can have
+        # one outside it: usually none or few are looked at one by one.
         targets = self.targets
-        return (ends[:-1] == self.state_first and ends[-1] <= h.num_transitions
-                and all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(firsts, counts)))
+        top = max(targets[ends[0]:last], default=0)
+        if top < min(counts):
+            return True
+        ends.append(last)
+        return all(max(targets[ends[f]:ends[f + c]], default=0) < c for f, c in zip(bounds, counts) if c <= top)
 
     def event_name(self, event: int) -> str:
         """``EV_<name>`` when the image carries names, else ``EV_<index>``."""
@@ -331,37 +363,55 @@ class Image:
         return self.names.index(bare)
 
 
-def _check_sections(raw: bytes, h: Header) -> Optional[List[str]]:
-    """The event names (None: no names section), once the sections are known to end exactly
-    at the checksum and every name to hold NAME_CHARS only; ImageError (LAYOUT) otherwise."""
-    m, end = h.mask_bytes, len(raw) - CRC_SIZE
-    pos = (HEADER_SIZE + 2 * m + h.num_supervisors * (m + SUPERVISOR_RECORD.size)
-           + h.num_states * (m + STATE_RECORD.size) + h.num_transitions * h.state_width)
-    if h.flags & FLAG_PROBS:
-        pos += h.num_transitions * PROB.size
-    if pos > end:
-        raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
-    names = None
-    if h.flags & FLAG_NAMES:
-        names = []
-        for event in range(h.num_events):
-            if pos >= end:
-                raise _layout_error("image names section ends at event %d of %d" % (event, h.num_events))
-            size = raw[pos]
-            name = raw[pos + 1:pos + 1 + size]
-            if pos + 1 + size > end:
-                raise _layout_error("image event %d's name runs past the checksum at byte %d" % (event, end))
-            if not NAME_CHARS.issuperset(name):
-                raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
-                                    % (event, name))
-            names.append(name.decode("ascii"))
-            pos += 1 + size
-    if h.flags & FLAG_ORDER:
-        if pos + h.num_events + 2 * h.num_states > end:
-            raise _layout_error("image order section runs past the checksum at byte %d" % end)
-        if max(raw[pos:pos + h.num_events]) >= h.num_events:
-            raise _layout_error("image order section names an event index beyond the %d events" % h.num_events)
-        pos += h.num_events + 2 * h.num_states
-    if pos != end:
-        raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
-    return names
+def _names(raw: bytes, pos: int, stop: int, end: int, events: int) -> Tuple[List[str], int]:
+    """The event names at ``pos`` and the position after them, once each is known to end before
+    the checksum at ``end`` and to hold NAME_CHARS only; ImageError (LAYOUT) otherwise.
+
+    A well-formed section that ends at ``stop`` (where the sections after it must begin) is
+    split in a few C-level calls, without a Python step per name: its bytes that cannot be in
+    a name are then exactly the length bytes, and the pieces between them the names, each as
+    long as its length byte says. Any other section (a defect, or a name whose length byte is
+    also a name character: 48 characters or more) is walked name by name (_walk_names)."""
+    section = raw[pos:stop]
+    lengths = section.translate(None, _NAME_BYTES)
+    names = section.translate(_NAME_SPLIT).decode().split("\0")
+    if len(lengths) == events and [*map(len, names)] == [0, *lengths]:
+        return names[1:], stop
+    return _walk_names(raw, pos, end, events)
+
+
+_NAME_BYTES = bytes(sorted(NAME_CHARS))
+# Each byte that cannot be in a name (a length byte) to NUL, the others to themselves.
+_NAME_SPLIT = bytes(value if value in NAME_CHARS else 0 for value in range(256))
+
+
+def _walk_names(raw: bytes, pos: int, end: int, events: int) -> Tuple[List[str], int]:
+    """_names one name at a time: the names and the position after them, or ImageError (LAYOUT)
+    naming the first defect."""
+    names = []
+    for event in range(events):
+        if pos >= end:
+            raise _layout_error("image names section ends at event %d of %d" % (event, events))
+        size = raw[pos]
+        name = raw[pos + 1:pos + 1 + size]
+        if pos + 1 + size > end:
+            raise _layout_error("image event %d's name runs past the checksum at byte %d" % (event, end))
+        if not NAME_CHARS.issuperset(name):
+            raise _layout_error("image event %d's name %r holds characters other than letters, digits and '_'"
+                                % (event, name))
+        names.append(name.decode("ascii"))
+        pos += 1 + size
+    return names, pos
+
+
+def _order(raw: bytes, pos: int, end: int, events: int, states: int) -> Tuple[List[int], List[int], int]:
+    """The order section at ``pos``: each event's index in the source file, each state's
+    number there, and the position after it; ImageError (LAYOUT) when it runs past the
+    checksum at ``end`` or names an event index beyond the events."""
+    after = pos + events + 2 * states
+    if after > end:
+        raise _layout_error("image order section runs past the checksum at byte %d" % end)
+    order = list(raw[pos:pos + events])
+    if max(order) >= events:
+        raise _layout_error("image order section names an event index beyond the %d events" % events)
+    return order, list(struct.unpack_from("<%dH" % states, raw, pos + events)), after

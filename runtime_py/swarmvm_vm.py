@@ -14,6 +14,8 @@ do ahead of time, and what they gained.
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
            "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
 
+import functools
+import operator
 import os
 import random
 import types
@@ -341,50 +343,57 @@ class VM:
     def _install(self, image):
         """Derive the per-state lookup structures the step uses from an image."""
         self.image = image
-        self.num_events = image.num_events
-        uncontrollable = ((1 << image.num_events) - 1) & ~image.controllable
+        events = self.num_events = image.num_events
+        controllable, public = image.controllable, image.public
+        uncontrollable = ((1 << events) - 1) & ~controllable
         # Check order: public uncontrollable events first, then private ones, each by name.
-        self.input_order = _bits(uncontrollable & image.public) + _bits(uncontrollable & ~image.public)
-        controllable = image.controllable
+        self.input_order = _bits(uncontrollable & public) + _bits(uncontrollable & ~public)
         # Per event, for each supervisor whose alphabet holds it: (supervisor, the successor of
         # each of its states on the event, None where undefined): one list index per move.
         # The gates: the supervisors that can disable a controllable event, each with the
         # controllable events it allows in each of its states (the enabled set is their AND).
+        successors: list = [()] * events
         gates = []
-        pairs_of: list = [[] for _ in range(image.num_events)]
-        self._moves = None
         inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
-        targets = image.targets
+        targets, state_defined = image.targets, image.state_defined
+        pairs = list(zip(state_defined, image.state_first))     # each state's (defined events, first successor)
         for sup, first, count, alphabet in zip(range(image.num_supervisors), image.sup_first_state,
                                                image.sup_num_states, image.sup_alphabet):
-            defined = image.state_defined[first:first + count]
-            starts = image.state_first[first:first + count]
-            outside = controllable & ~alphabet      # the controllable events it cannot disable
-            gate = [(mask & controllable) | outside for mask in defined]
-            if min(gate) != controllable:
-                gates.append((sup, gate))
-            inputs = alphabet & ~controllable
-            if inputs_total and inputs and min(mask & inputs for mask in defined) != inputs:
+            defined = state_defined[first:first + count]
+            everywhere = functools.reduce(operator.and_, defined) & alphabet   # events no state leaves undefined
+            if controllable & alphabet & ~everywhere:     # it can disable a controllable event
+                outside = controllable & ~alphabet      # the controllable events it cannot disable
+                gates.append((sup, [(mask & controllable) | outside for mask in defined]))
+            if alphabet & ~controllable & ~everywhere:
                 inputs_total = False
+            states = pairs[first:first + count]
             # A column per event, one comprehension each: the successor is at the event's rank
             # among the state's defined events (no Python loop per transition).
-            for e in _bits(alphabet):
-                bit, below = 1 << e, (1 << e) - 1
-                pairs_of[e].append((sup, [targets[base + (mask & below).bit_count()] if mask & bit else None
-                                          for mask, base in zip(defined, starts)]))
-        self.successors = [tuple(pairs) for pairs in pairs_of]
+            rest = alphabet
+            while rest:     # each event of the alphabet (as _bits), lowest first
+                bit = rest & -rest
+                rest ^= bit
+                below = bit - 1
+                successors[below.bit_length()] += ((sup, [targets[base + (mask & below).bit_count()] if mask & bit
+                                                          else None for mask, base in states]),)
+        self.successors = successors
         # When no state of any supervisor leaves an uncontrollable event undefined, no input can
         # violate, and the step moves the inputs by these successors without a check (else None).
-        self._total = self.successors if inputs_total else None
+        self._total = successors if inputs_total else None
         self._gates = tuple(gates)
+        self._moves = None
         self._replan()
         self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
         # One supervisor: per state, its enabled events and the state after each (_sole_entry).
         self._sole: list | None = [None] * image.sup_num_states[0] if image.num_supervisors == 1 else None
         # Rank of each event for policy "first": listed events first, the rest by name.
-        listed = [self._index(name) for name in self._priority or ()]
-        self.rank = ([listed.index(e) if e in listed else len(listed) + e for e in range(image.num_events)]
-                     if listed else list(range(image.num_events)))
+        self.rank = self._ranks() if self._priority else list(range(events))
+
+    def _ranks(self):
+        """Each event's rank for policy "first": the events of ``priority`` first, in its order,
+        then the others by name."""
+        listed = [self._index(name) for name in self._priority]
+        return [listed.index(e) if e in listed else len(listed) + e for e in range(self.num_events)]
 
     @property
     def moves(self):
