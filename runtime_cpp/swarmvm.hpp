@@ -633,6 +633,7 @@ public:
         previous_narrow_ = BasicMask<1>();
         violations_ = 0;
         rng_.seed(options_.seed);
+        relocate();
     }
 
     // Binds an action and/or a check to an event given by name ("EV_x" or "x") or index.
@@ -716,7 +717,10 @@ public:
             callback_threw(event, "check");
         }
     }
-    void fire(unsigned event) { apply(event); }
+    void fire(unsigned event) {
+        composed_ = kNoComposed;   // the next step() finds its composed state again
+        apply(event);
+    }
 
     const Image& image() const { return image_; }
     const Options& options() const { return options_; }
@@ -817,6 +821,30 @@ private:
         }
     }
 
+    // Composed states: the tuples of supervisor states that steps can reach from the initial
+    // tuple (the supervisors' synchronous product, with the inputs' violations: a supervisor
+    // without a transition on an input stays), numbered breadth first from 0, the initial tuple.
+    // Built at load when at most kComposedCells (composed states x events): a step then moves
+    // one number per event instead of every supervisor holding it, and takes its choice from one
+    // list of enabled events.
+    static constexpr std::size_t kComposedCells = std::size_t{1} << 14;   // 64 KB of successors
+    static constexpr unsigned kNoComposed = 0xFFFF;
+
+    struct Composed {
+        std::size_t count = 0;                      // composed states; 0: none built
+        std::vector<std::uint32_t> next;            // [e * count + c]: the successor of c on e above
+                                                    // the violations it counts, << 16 (controllable
+                                                    // events: only where enabled)
+        std::vector<std::uint16_t> globals;         // [c * supervisors + s]: s's global state in c
+        std::vector<std::uint16_t> locals;          // ... and its own state number
+        std::vector<std::uint32_t> choices_first;   // c's enabled controllable events, in event
+        std::vector<std::uint8_t> choices;          // order: choices[choices_first[c] .. [c + 1])
+        std::vector<Mask> enabled;                  // ... as a set
+        std::vector<std::uint64_t> place;           // per supervisor: its place value in a tuple's key
+        std::vector<std::uint64_t> keys;            // the composed states' keys, ascending,
+        std::vector<std::uint16_t> key_state;       // ... and the composed state of each
+    };
+
     // Lookup structures derived from an image (and the priority option) once, at load.
     struct Derived {
         std::vector<unsigned> input_order;              // public uncontrollable, then private
@@ -828,6 +856,7 @@ private:
         std::vector<unsigned> event_sups;               // the supervisors holding each event, event
         std::vector<unsigned> event_sups_first;         // by event: e's from event_sups_first[e] on
         std::vector<unsigned> rank;                     // per event: rank for policy first
+        Composed composed;
     };
 
     static Derived derive(const Image& image, const Options& options) {
@@ -886,7 +915,80 @@ private:
                 }
             }
         }
+        d.composed = compose(image, d);
         return d;
+    }
+
+    // The composed states of an image with a successor table, or none (count 0) when there are
+    // more than kComposedCells allows or a tuple's key would not fit 64 bits. Breadth first:
+    // every composed state's successors are numbered before the next state is expanded.
+    static Composed compose(const Image& image, const Derived& d) {
+        const unsigned n_sups = image.num_supervisors, n_events = image.num_events;
+        const std::size_t limit = std::min<std::size_t>(kComposedCells / n_events, kNoComposed);
+        Composed out;
+        std::uint64_t place = 1;
+        for (unsigned s = 0; s < n_sups; ++s) {
+            if (d.successors.empty() || place > UINT64_MAX / image.sup_num_states[s]) return Composed();
+            out.place.push_back(place);
+            place *= image.sup_num_states[s];
+        }
+        std::map<std::uint64_t, std::uint16_t> numbers;   // key -> composed state
+        std::vector<std::uint32_t> rows;                  // [c * events + e] while c grows
+        std::vector<std::uint16_t> tuple(n_sups);
+        // The number of the tuple of global states `tuple`, added if new; kNoComposed past the limit.
+        const auto number = [&]() -> unsigned {
+            std::uint64_t key = 0;
+            for (unsigned s = 0; s < n_sups; ++s) key += (tuple[s] - image.sup_first_state[s]) * out.place[s];
+            const auto found = numbers.find(key);
+            if (found != numbers.end()) return found->second;
+            if (numbers.size() == limit) return kNoComposed;
+            out.globals.insert(out.globals.end(), tuple.begin(), tuple.end());
+            return numbers.emplace(key, static_cast<std::uint16_t>(numbers.size())).first->second;
+        };
+        for (unsigned s = 0; s < n_sups; ++s) tuple[s] = static_cast<std::uint16_t>(image.sup_first_state[s] + image.sup_initial[s]);
+        number();
+        for (std::size_t c = 0; c < numbers.size(); ++c) {
+            for (unsigned e = 0; e < n_events; ++e) {
+                std::copy_n(out.globals.begin() + static_cast<std::ptrdiff_t>(c * n_sups), n_sups, tuple.begin());
+                std::uint32_t violations = 0;
+                for (unsigned k = d.event_sups_first[e]; k < d.event_sups_first[e + 1]; ++k) {
+                    const unsigned s = d.event_sups[k];
+                    const std::uint32_t next = d.successors[e * d.num_globals + tuple[s]];
+                    if (next == kNoSuccessor) {
+                        ++violations;
+                    } else {
+                        tuple[s] = static_cast<std::uint16_t>(next);
+                    }
+                }
+                if (violations != 0 && image.controllable.test(e)) {   // never chosen here
+                    rows.push_back(kNoComposed);
+                    continue;
+                }
+                const unsigned successor = number();
+                if (successor == kNoComposed) return Composed();
+                rows.push_back(successor | violations << 16);
+            }
+        }
+        out.count = numbers.size();
+        out.next.resize(rows.size());
+        for (std::size_t c = 0; c < out.count; ++c) {
+            for (unsigned e = 0; e < n_events; ++e) out.next[e * out.count + c] = rows[c * n_events + e];
+            Mask enabled = image.controllable;
+            for (unsigned s = 0; s < n_sups; ++s) {
+                const unsigned g = out.globals[c * n_sups + s];
+                enabled &= d.wide.allowed[g];
+                out.locals.push_back(static_cast<std::uint16_t>(g - image.sup_first_state[s]));
+            }
+            out.enabled.push_back(enabled);
+            out.choices_first.push_back(static_cast<std::uint32_t>(out.choices.size()));
+            enabled.for_each([&](unsigned e) { out.choices.push_back(static_cast<std::uint8_t>(e)); });
+        }
+        out.choices_first.push_back(static_cast<std::uint32_t>(out.choices.size()));
+        for (const auto& entry : numbers) {
+            out.keys.push_back(entry.first);
+            out.key_state.push_back(entry.second);
+        }
+        return out;
     }
 
     template <class M>
@@ -898,8 +1000,17 @@ private:
         return mask;
     }
 
+    // A step: from the composed state (Composed) when the VM is in one, else the general way.
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
+        const M occurred = take_inputs(previous);
+        if (composed_ != kNoComposed) return step_composed(sets, occurred);
+        return step_general(sets, occurred);
+    }
+
+    // Steps 1 and 2: polls the bound checks in input order and returns the events that occur.
+    template <class M>
+    M take_inputs(M& previous) {
         M current;
         if (polls_.stale) rebuild_polls();
         polling_ = true;
@@ -915,22 +1026,106 @@ private:
         }
         polling_ = false;
         fired_.clear();     // after the checks: one that throws leaves the last step's events
-        M occurred = current;
-        if (options_.inputs == Inputs::edge) occurred = previous.complement_in(current);
+        const M occurred = options_.inputs == Inputs::edge ? previous.complement_in(current) : current;
         previous = current;
+        return occurred;
+    }
+
+    // Steps 3 to 6 by composed state: one table entry per event instead of one per supervisor
+    // holding it, the enabled events listed per composed state. An input with an action, or a
+    // violation with a hook to call, hands the whole step over to step_general before anything
+    // changed (the walk only moves locals), so that callbacks see the states they would.
+    template <class M>
+    const std::vector<unsigned>& step_composed(const Sets<M>& sets, const M& occurred) {
+        const Composed& composed = derived_.composed;
+        unsigned c = composed_;
+        std::uint32_t violations = 0;
+        bool acting = false;
+        walk(occurred & sets.public_inputs, c, violations, acting);
+        walk(occurred & sets.private_inputs, c, violations, acting);
+        if (acting || (violations != 0 && on_violation_)) {
+            fired_.clear();
+            return step_general(sets, occurred);
+        }
+        // Saturating, without a branch: violations are as likely as the inputs that cause them.
+        const std::uint64_t total = std::uint64_t{violations_} + violations;
+        violations_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(total, kMaxViolations));
+        if (!fired_.empty() && options_.control == Control::if_quiet) return settle(c);
+        const std::uint32_t first = composed.choices_first[c];
+        const std::uint32_t n = composed.choices_first[c + 1] - first;
+        if (n == 0) return settle(c);
+        unsigned choice;
+        if (options_.policy == Policy::uniform) {
+            choice = composed.choices[first + (n == 1 ? 0 : scale_below(rng_.next(), n))];
+        } else {
+            settle(c);   // the weighted policy reads the supervisors' states
+            choice = select_listed(composed.enabled[c]);
+        }
+        fired_.push_back(choice);
+        settle(composed.next[choice * composed.count + c] & 0xFFFFu);
+        if (actions_[choice]) act(choice);
+        return fired_;
+    }
+
+    // Moves composed state c along `inputs` in event order, listing them as fired, counting
+    // their violations and whether any has an action.
+    template <class M>
+    void walk(const M& inputs, unsigned& c, std::uint32_t& violations, bool& acting) {
+        const Composed& composed = derived_.composed;
+        inputs.for_each([&](unsigned e) {
+            const std::uint32_t next = composed.next[e * composed.count + c];
+            c = next & 0xFFFFu;
+            violations += next >> 16;
+            acting = acting || actions_[e];
+            fired_.push_back(e);
+        });
+    }
+
+    // Makes composed state c the supervisors' states; returns the fired events.
+    const std::vector<unsigned>& settle(unsigned c) {
+        const Composed& composed = derived_.composed;
+        const std::size_t n = states_.size();
+        composed_ = c;
+        for (std::size_t s = 0; s < n; ++s) {
+            globals_[s] = composed.globals[c * n + s];
+            states_[s] = composed.locals[c * n + s];
+        }
+        return fired_;
+    }
+
+    // Steps 3 to 6 supervisor by supervisor, then the composed state of the outcome (if any).
+    // Out of line: rare where composed states exist. composed_ is cleared first, so that an
+    // action that throws leaves the next step to find it again.
+    template <class M>
+    SWARMVM_NOINLINE const std::vector<unsigned>& step_general(const Sets<M>& sets, const M& occurred) {
+        composed_ = kNoComposed;
         const auto fire_input = [this](unsigned e) {
             fired_.push_back(e);
             apply(e);
         };
         (occurred & sets.public_inputs).for_each(fire_input);     // input order: public first
         (occurred & sets.private_inputs).for_each(fire_input);
-        if (!fired_.empty() && options_.control == Control::if_quiet) return fired_;
-        const M mask = enabled_in(sets);
-        if (!mask.any()) return fired_;
-        const unsigned choice = select(mask);
-        fired_.push_back(choice);
-        apply(choice);
+        if (fired_.empty() || options_.control != Control::if_quiet) {
+            const M mask = enabled_in(sets);
+            if (mask.any()) {
+                const unsigned choice = select(mask);
+                fired_.push_back(choice);
+                apply(choice);
+            }
+        }
+        relocate();
         return fired_;
+    }
+
+    // composed_ from the supervisors' states: their composed state, or kNoComposed.
+    void relocate() {
+        const Composed& composed = derived_.composed;
+        composed_ = kNoComposed;
+        if (composed.count == 0) return;
+        std::uint64_t key = 0;
+        for (std::size_t s = 0; s < states_.size(); ++s) key += states_[s] * composed.place[s];
+        const auto at = std::lower_bound(composed.keys.begin(), composed.keys.end(), key);
+        if (at != composed.keys.end() && *at == key) composed_ = composed.key_state[at - composed.keys.begin()];
     }
 
     void require(unsigned event) const {
@@ -1091,6 +1286,7 @@ private:
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;
     std::vector<std::uint16_t> globals_;   // per supervisor: its state's global index
+    unsigned composed_ = kNoComposed;      // the composed state of states_, or kNoComposed
     Mask previous_;                   // check values of the previous step (edge), for E > 64
     BasicMask<1> previous_narrow_;    // ... for E <= 64
     std::uint32_t violations_ = 0;
