@@ -659,6 +659,7 @@ public:
     void set_action(unsigned event, Action action) {
         require(event);
         actions_[event] = std::move(action);
+        rebuild_polls();
     }
     void set_check(const std::string& event, Check check) { set_check(image_.event_index(event), std::move(check)); }
     void set_check(unsigned event, Check check) { store_check(event, std::move(check), CheckCall()); }
@@ -770,6 +771,8 @@ private:
         bool (*call)(void* callable, void* data);
         void* callable;
         void* data;
+        const std::uint32_t* successors;   // the event's Composed::next by composed state, if any
+        std::uint32_t bit;                 // the event's bit in a set of inputs (Composed::fired)
         unsigned event;
     };
 
@@ -809,26 +812,40 @@ private:
         if (polling_) throw std::logic_error(std::string("a check cannot ") + what + " while the VM polls its checks");
     }
 
-    // The poll list from the bound checks: rebuilt whenever a binding or the image changes, so
-    // the step neither walks unbound events nor tests for an empty Check.
+    // The poll list from the bound checks, and the events with actions: rebuilt whenever a
+    // binding or the image changes, so the step neither walks unbound events nor tests for an
+    // empty Check or Action per event.
     void rebuild_polls() {
+        const Composed& composed = derived_.composed;
         polls_.list.clear();
         polls_.stale = false;
-        for (unsigned e : derived_.input_order) {
+        acting_ = Mask();
+        acting_inputs_ = 0;
+        for (unsigned e = 0; e < image_.num_events; ++e) acting_.set_if(e, static_cast<bool>(actions_[e]));
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            const unsigned e = derived_.input_order[i];
+            const std::uint32_t bit = composed.count != 0 ? std::uint32_t{1} << i : 0;
+            if (acting_.test(e)) acting_inputs_ |= bit;
             if (!checks_[e]) continue;
             const CheckCall& how = check_calls_[e];
-            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], e});
+            const std::uint32_t* successors = composed.count != 0 ? composed.next.data() + e * composed.count : nullptr;
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], successors, bit, e});
         }
     }
 
     // Composed states: the tuples of supervisor states that steps can reach from the initial
     // tuple (the supervisors' synchronous product, with the inputs' violations: a supervisor
     // without a transition on an input stays), numbered breadth first from 0, the initial tuple.
-    // Built at load when at most kComposedCells (composed states x events): a step then moves
-    // one number per event instead of every supervisor holding it, and takes its choice from one
-    // list of enabled events.
+    // Built at load when small (kComposedCells, kFiredLists). A step then moves one number per
+    // input, without a branch, while it polls; takes its choice from one list per composed
+    // state; and returns one of the lists of fired events made here (one per set of inputs and
+    // choice) instead of building one: a branch per occurring input or per event pushed would
+    // be as good as random to a predictor, and mispredicted branches cost the small models'
+    // steps more than all the rest.
     static constexpr std::size_t kComposedCells = std::size_t{1} << 14;   // 64 KB of successors
+    static constexpr std::size_t kFiredLists = 1024;                      // sets of inputs x slots
     static constexpr unsigned kNoComposed = 0xFFFF;
+    static constexpr unsigned kNoEvent = 255;       // above every event (E <= 255)
 
     struct Composed {
         std::size_t count = 0;                      // composed states; 0: none built
@@ -837,9 +854,14 @@ private:
                                                     // events: only where enabled)
         std::vector<std::uint16_t> globals;         // [c * supervisors + s]: s's global state in c
         std::vector<std::uint16_t> locals;          // ... and its own state number
-        std::vector<std::uint32_t> choices_first;   // c's enabled controllable events, in event
-        std::vector<std::uint8_t> choices;          // order: choices[choices_first[c] .. [c + 1])
-        std::vector<Mask> enabled;                  // ... as a set
+        std::vector<std::uint32_t> choices_first;   // c's choices, in event order: the successor
+        std::vector<std::uint16_t> choices_count;   // above the slot << 16 of each of its enabled
+        std::vector<std::uint32_t> choices;         // events, or (none enabled) c above slot 0
+        std::vector<Mask> enabled;                  // c's enabled events as a set
+        std::vector<unsigned> slot_event;           // per slot: kNoEvent, then the controllable events
+        std::vector<std::vector<unsigned>> fired;   // [inputs * slots + slot]: the fired events of a
+                                                    // step whose inputs, as bits in input order,
+                                                    // and choice are those
         std::vector<std::uint64_t> place;           // per supervisor: its place value in a tuple's key
         std::vector<std::uint64_t> keys;            // the composed states' keys, ascending,
         std::vector<std::uint16_t> key_state;       // ... and the composed state of each
@@ -925,7 +947,12 @@ private:
     static Composed compose(const Image& image, const Derived& d) {
         const unsigned n_sups = image.num_supervisors, n_events = image.num_events;
         const std::size_t limit = std::min<std::size_t>(kComposedCells / n_events, kNoComposed);
+        const std::size_t n_inputs = d.input_order.size();
         Composed out;
+        out.slot_event.push_back(kNoEvent);
+        image.controllable.for_each([&](unsigned e) { out.slot_event.push_back(e); });
+        const std::size_t slots = out.slot_event.size();
+        if (n_inputs >= 16 || (std::size_t{1} << n_inputs) * slots > kFiredLists) return Composed();
         std::uint64_t place = 1;
         for (unsigned s = 0; s < n_sups; ++s) {
             if (d.successors.empty() || place > UINT64_MAX / image.sup_num_states[s]) return Composed();
@@ -981,9 +1008,23 @@ private:
             }
             out.enabled.push_back(enabled);
             out.choices_first.push_back(static_cast<std::uint32_t>(out.choices.size()));
-            enabled.for_each([&](unsigned e) { out.choices.push_back(static_cast<std::uint8_t>(e)); });
+            out.choices_count.push_back(static_cast<std::uint16_t>(enabled.count()));
+            for (std::uint32_t slot = 1; slot < slots; ++slot) {
+                const unsigned e = out.slot_event[slot];
+                if (enabled.test(e)) out.choices.push_back((out.next[e * out.count + c] & 0xFFFFu) | slot << 16);
+            }
+            if (!enabled.any()) out.choices.push_back(static_cast<std::uint32_t>(c));
         }
-        out.choices_first.push_back(static_cast<std::uint32_t>(out.choices.size()));
+        for (std::uint32_t inputs = 0; inputs < (std::uint32_t{1} << n_inputs); ++inputs) {
+            for (std::size_t slot = 0; slot < slots; ++slot) {
+                std::vector<unsigned> fired;
+                for (std::size_t i = 0; i < n_inputs; ++i) {
+                    if ((inputs >> i) & 1u) fired.push_back(d.input_order[i]);
+                }
+                if (slot != 0) fired.push_back(out.slot_event[slot]);
+                out.fired.push_back(std::move(fired));
+            }
+        }
         for (const auto& entry : numbers) {
             out.keys.push_back(entry.first);
             out.key_state.push_back(entry.second);
@@ -1003,86 +1044,91 @@ private:
     // A step: from the composed state (Composed) when the VM is in one, else the general way.
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
-        const M occurred = take_inputs(previous);
-        if (composed_ != kNoComposed) return step_composed(sets, occurred);
-        return step_general(sets, occurred);
+        if (composed_ != kNoComposed) return step_composed(sets, previous);
+        return step_general(sets, take_inputs(previous));
     }
 
-    // Steps 1 and 2: polls the bound checks in input order and returns the events that occur.
-    template <class M>
-    M take_inputs(M& previous) {
-        M current;
+    // Step 1: calls f(poll, value) for every bound check in input order, with its value.
+    template <class F>
+    SWARMVM_INLINE void poll_each(F&& f) {
         if (polls_.stale) rebuild_polls();
         polling_ = true;
         for (const Poll& p : polls_.list) {
-            bool occurs;
+            bool value;
             try {
-                occurs = p.call(p.callable, p.data);
+                value = p.call(p.callable, p.data);
             } catch (...) {
                 polling_ = false;
                 callback_threw(p.event, "check");
             }
-            current.set_if(p.event, occurs);
+            f(p, value);
         }
         polling_ = false;
+    }
+
+    // Steps 1 and 2: polls the bound checks and returns the events that occur.
+    template <class M>
+    M take_inputs(M& previous) {
+        M current;
+        poll_each([&](const Poll& p, bool value) { current.set_if(p.event, value); });
         fired_.clear();     // after the checks: one that throws leaves the last step's events
         const M occurred = options_.inputs == Inputs::edge ? previous.complement_in(current) : current;
         previous = current;
         return occurred;
     }
 
-    // Steps 3 to 6 by composed state: one table entry per event instead of one per supervisor
-    // holding it, the enabled events listed per composed state. An input with an action, or a
-    // violation with a hook to call, hands the whole step over to step_general before anything
-    // changed (the walk only moves locals), so that callbacks see the states they would.
+    // A step from composed state composed_ (Composed), without a branch on what the checks
+    // return: the inputs that occur move a local composed state as they are polled (so a check
+    // that throws leaves the VM as it was) and gather as bits in input order. An input with an
+    // action, or a violation with a hook to call, hands the step to step_general before anything
+    // changed, so that callbacks see the states they would.
     template <class M>
-    const std::vector<unsigned>& step_composed(const Sets<M>& sets, const M& occurred) {
+    const std::vector<unsigned>& step_composed(const Sets<M>& sets, M& previous) {
         const Composed& composed = derived_.composed;
-        unsigned c = composed_;
-        std::uint32_t violations = 0;
-        bool acting = false;
-        walk(occurred & sets.public_inputs, c, violations, acting);
-        walk(occurred & sets.private_inputs, c, violations, acting);
-        if (acting || (violations != 0 && on_violation_)) {
+        const bool edge = options_.inputs == Inputs::edge;
+        M current;
+        std::uint32_t c = composed_, inputs = 0, violations = 0;
+        poll_each([&](const Poll& p, bool value) {
+            current.set_if(p.event, value);
+            const std::uint32_t occurs = std::uint32_t{value} & ~std::uint32_t{edge && previous.test(p.event)};
+            const std::uint32_t take = 0u - occurs;   // all ones if the input occurs
+            const std::uint32_t next = p.successors[c];
+            c ^= (c ^ (next & 0xFFFFu)) & take;
+            violations += (next >> 16) & take;
+            inputs |= p.bit & take;
+        });
+        const M occurred = edge ? previous.complement_in(current) : current;
+        previous = current;
+        if ((inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
             fired_.clear();
             return step_general(sets, occurred);
         }
         // Saturating, without a branch: violations are as likely as the inputs that cause them.
         const std::uint64_t total = std::uint64_t{violations_} + violations;
         violations_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(total, kMaxViolations));
-        if (!fired_.empty() && options_.control == Control::if_quiet) return settle(c);
-        const std::uint32_t first = composed.choices_first[c];
-        const std::uint32_t n = composed.choices_first[c + 1] - first;
-        if (n == 0) return settle(c);
-        unsigned choice;
-        if (options_.policy == Policy::uniform) {
-            choice = composed.choices[first + (n == 1 ? 0 : scale_below(rng_.next(), n))];
-        } else {
-            settle(c);   // the weighted policy reads the supervisors' states
-            choice = select_listed(composed.enabled[c]);
+        const std::vector<unsigned>* const fired = &composed.fired[inputs * composed.slot_event.size()];
+        if (options_.control == Control::if_quiet && inputs != 0) return settle(c, fired[0]);
+        const unsigned n = composed.choices_count[c];
+        unsigned pick = 0;
+        if (n > 1 && options_.policy == Policy::uniform) {
+            pick = scale_below(rng_.next(), n);
+        } else if (n > 1) {
+            settle(c, fired[0]);   // the weighted policy reads the supervisors' states
+            pick = composed.enabled[c].count_below(select_listed(composed.enabled[c]));
         }
-        fired_.push_back(choice);
-        settle(composed.next[choice * composed.count + c] & 0xFFFFu);
-        if (actions_[choice]) act(choice);
-        return fired_;
+        const std::uint32_t choice = composed.choices[composed.choices_first[c] + pick];
+        const unsigned slot = choice >> 16, event = composed.slot_event[slot];
+        settle(choice & 0xFFFFu, fired[slot]);
+        if (acting_.test(event)) {
+            fired_ = fired[slot];   // the action may load another image, and its lists
+            act(event);
+            return fired_;
+        }
+        return fired[slot];
     }
 
-    // Moves composed state c along `inputs` in event order, listing them as fired, counting
-    // their violations and whether any has an action.
-    template <class M>
-    void walk(const M& inputs, unsigned& c, std::uint32_t& violations, bool& acting) {
-        const Composed& composed = derived_.composed;
-        inputs.for_each([&](unsigned e) {
-            const std::uint32_t next = composed.next[e * composed.count + c];
-            c = next & 0xFFFFu;
-            violations += next >> 16;
-            acting = acting || actions_[e];
-            fired_.push_back(e);
-        });
-    }
-
-    // Makes composed state c the supervisors' states; returns the fired events.
-    const std::vector<unsigned>& settle(unsigned c) {
+    // Makes composed state c the supervisors' states; returns `fired`.
+    const std::vector<unsigned>& settle(unsigned c, const std::vector<unsigned>& fired) {
         const Composed& composed = derived_.composed;
         const std::size_t n = states_.size();
         composed_ = c;
@@ -1090,7 +1136,7 @@ private:
             globals_[s] = composed.globals[c * n + s];
             states_[s] = composed.locals[c * n + s];
         }
-        return fired_;
+        return fired;
     }
 
     // Steps 3 to 6 supervisor by supervisor, then the composed state of the outcome (if any).
@@ -1287,6 +1333,8 @@ private:
     std::vector<std::uint16_t> states_;
     std::vector<std::uint16_t> globals_;   // per supervisor: its state's global index
     unsigned composed_ = kNoComposed;      // the composed state of states_, or kNoComposed
+    Mask acting_;                          // the events with an action
+    std::uint32_t acting_inputs_ = 0;      // ... among the inputs, as Poll::bit
     Mask previous_;                   // check values of the previous step (edge), for E > 64
     BasicMask<1> previous_narrow_;    // ... for E <= 64
     std::uint32_t violations_ = 0;
