@@ -549,6 +549,12 @@ public:
         state_ = x;
         return x;
     }
+    // The draw next() would return, the state advanced only if `advance`: without a branch.
+    std::uint32_t next_if(bool advance) {
+        const std::uint32_t before = state_, x = next();
+        state_ ^= (x ^ before) & (0u - std::uint32_t{!advance});
+        return x;
+    }
 
 private:
     std::uint32_t state_ = 1;
@@ -557,6 +563,22 @@ private:
 // An index in [0, n) for n < 65536 from a 32-bit draw: the top 16 bits scaled by n.
 inline unsigned scale_below(std::uint32_t draw, unsigned n) {
     return static_cast<unsigned>(((draw >> 16) * n) >> 16);
+}
+
+// The uniform policy's index among n choices: no draw unless n > 1 (docs/semantics.md).
+// `varies`: whether n > 1 in some steps and not in others (a hint, see the XorShift32 overload).
+template <class Rng>
+unsigned pick_uniform(Rng& rng, unsigned n, bool /*varies*/) {
+    return n > 1 ? scale_below(rng.next(), n) : 0;
+}
+
+// The same for the specified generator. When n > 1 in some steps and not in others, a branch
+// on it is as good as random to a predictor: the next state is then computed in every step and
+// kept only if n > 1 (scale_below(draw, n) is 0 for n <= 1). Otherwise the branch always goes
+// the same way, and drawing in every step would only lengthen the step.
+inline unsigned pick_uniform(XorShift32& rng, unsigned n, bool varies) {
+    if (!varies) return n > 1 ? scale_below(rng.next(), n) : 0;
+    return scale_below(rng.next_if(n > 1), n);
 }
 
 // A member function as a VM callback: vm.set_action("EV_x", member(this, &C::OnX)) or
@@ -771,7 +793,6 @@ private:
         bool (*call)(void* callable, void* data);
         void* callable;
         void* data;
-        const std::uint32_t* successors;   // the event's Composed::next by composed state, if any
         std::uint32_t bit;                 // the event's bit in a set of inputs (Composed::fired)
         unsigned event;
     };
@@ -828,36 +849,47 @@ private:
             if (acting_.test(e)) acting_inputs_ |= bit;
             if (!checks_[e]) continue;
             const CheckCall& how = check_calls_[e];
-            const std::uint32_t* successors = composed.count != 0 ? composed.next.data() + e * composed.count : nullptr;
-            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], successors, bit, e});
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], bit, e});
         }
     }
 
     // Composed states: the tuples of supervisor states that steps can reach from the initial
     // tuple (the supervisors' synchronous product, with the inputs' violations: a supervisor
     // without a transition on an input stays), numbered breadth first from 0, the initial tuple.
-    // Built at load when small (kComposedCells, kFiredLists). A step then moves one number per
-    // input, without a branch, while it polls; takes its choice from one list per composed
-    // state; and returns one of the lists of fired events made here (one per set of inputs and
-    // choice) instead of building one: a branch per occurring input or per event pushed would
-    // be as good as random to a predictor, and mispredicted branches cost the small models'
+    // Built at load when small (kComposedCells, kFiredLists). A step then gathers the inputs
+    // that occur as bits while it polls, moves by all of them with one table entry, takes its
+    // choice from one list per composed state, and returns one of the lists of fired events
+    // made here (one per set of inputs and choice) instead of building one: a branch per
+    // occurring input or per event pushed would be as good as random to a predictor, and
+    // mispredicted branches and a chain of dependent loads per input cost the small models'
     // steps more than all the rest.
-    static constexpr std::size_t kComposedCells = std::size_t{1} << 14;   // 64 KB of successors
+    static constexpr std::size_t kComposedCells = std::size_t{1} << 14;   // of each table: 64 KB
     static constexpr std::size_t kFiredLists = 1024;                      // sets of inputs x slots
     static constexpr unsigned kNoComposed = 0xFFFF;
     static constexpr unsigned kNoEvent = 255;       // above every event (E <= 255)
 
+    // A composed state's choices: choices[first .. first + count), the first one copied here
+    // so that a state with one choice or none takes it with one load less.
+    struct Head {
+        std::uint32_t choice;
+        std::uint32_t first;
+        std::uint32_t count;
+    };
+
     struct Composed {
         std::size_t count = 0;                      // composed states; 0: none built
-        std::vector<std::uint32_t> next;            // [e * count + c]: the successor of c on e above
-                                                    // the violations it counts, << 16 (controllable
-                                                    // events: only where enabled)
+        unsigned inputs = 0;                        // uncontrollable events (bits of a set of inputs)
+        std::vector<std::uint32_t> after;           // [c << inputs | set of inputs]: the composed state
+                                                    // reached by the inputs, in input order, above the
+                                                    // violations they count << 16
         std::vector<std::uint16_t> globals;         // [c * supervisors + s]: s's global state in c
         std::vector<std::uint16_t> locals;          // ... and its own state number
-        std::vector<std::uint32_t> choices_first;   // c's choices, in event order: the successor
-        std::vector<std::uint16_t> choices_count;   // above the slot << 16 of each of its enabled
-        std::vector<std::uint32_t> choices;         // events, or (none enabled) c above slot 0
+        std::vector<Head> heads;                    // per c: its choices, in event order: the successor
+        std::vector<std::uint32_t> choices;         // above the slot << 16 of each of its enabled
+                                                    // events, or (none enabled) c above slot 0
         std::vector<Mask> enabled;                  // c's enabled events as a set
+        bool draws_vary = false;                    // some composed states draw (two choices or
+                                                    // more), others do not (pick_uniform)
         std::vector<unsigned> slot_event;           // per slot: kNoEvent, then the controllable events
         std::vector<std::vector<unsigned>> fired;   // [inputs * slots + slot]: the fired events of a
                                                     // step whose inputs, as bits in input order,
@@ -960,7 +992,8 @@ private:
             place *= image.sup_num_states[s];
         }
         std::map<std::uint64_t, std::uint16_t> numbers;   // key -> composed state
-        std::vector<std::uint32_t> rows;                  // [c * events + e] while c grows
+        std::vector<std::uint32_t> rows;                  // [c * events + e]: c's successor on e above
+                                                          // its violations << 16 (kNoComposed: never taken)
         std::vector<std::uint16_t> tuple(n_sups);
         // The number of the tuple of global states `tuple`, added if new; kNoComposed past the limit.
         const auto number = [&]() -> unsigned {
@@ -997,9 +1030,20 @@ private:
             }
         }
         out.count = numbers.size();
-        out.next.resize(rows.size());
+        out.inputs = static_cast<unsigned>(n_inputs);
+        if ((out.count << n_inputs) > kComposedCells) return Composed();
         for (std::size_t c = 0; c < out.count; ++c) {
-            for (unsigned e = 0; e < n_events; ++e) out.next[e * out.count + c] = rows[c * n_events + e];
+            const std::uint32_t* const next = &rows[c * n_events];   // c's successors by event
+            for (std::uint32_t inputs = 0; inputs < (std::uint32_t{1} << n_inputs); ++inputs) {
+                std::uint32_t reached = static_cast<std::uint32_t>(c), violations = 0;
+                for (std::size_t i = 0; i < n_inputs; ++i) {
+                    if (((inputs >> i) & 1u) == 0) continue;
+                    const std::uint32_t entry = rows[reached * n_events + d.input_order[i]];
+                    reached = entry & 0xFFFFu;
+                    violations += entry >> 16;
+                }
+                out.after.push_back(reached | violations << 16);
+            }
             Mask enabled = image.controllable;
             for (unsigned s = 0; s < n_sups; ++s) {
                 const unsigned g = out.globals[c * n_sups + s];
@@ -1007,14 +1051,17 @@ private:
                 out.locals.push_back(static_cast<std::uint16_t>(g - image.sup_first_state[s]));
             }
             out.enabled.push_back(enabled);
-            out.choices_first.push_back(static_cast<std::uint32_t>(out.choices.size()));
-            out.choices_count.push_back(static_cast<std::uint16_t>(enabled.count()));
+            const std::uint32_t first = static_cast<std::uint32_t>(out.choices.size());
             for (std::uint32_t slot = 1; slot < slots; ++slot) {
                 const unsigned e = out.slot_event[slot];
-                if (enabled.test(e)) out.choices.push_back((out.next[e * out.count + c] & 0xFFFFu) | slot << 16);
+                if (enabled.test(e)) out.choices.push_back((next[e] & 0xFFFFu) | slot << 16);
             }
             if (!enabled.any()) out.choices.push_back(static_cast<std::uint32_t>(c));
+            out.heads.push_back(Head{out.choices[first], first, enabled.count()});
         }
+        const auto draws = [](const Head& head) { return head.count > 1; };
+        out.draws_vary = std::any_of(out.heads.begin(), out.heads.end(), draws) &&
+                         !std::all_of(out.heads.begin(), out.heads.end(), draws);
         for (std::uint32_t inputs = 0; inputs < (std::uint32_t{1} << n_inputs); ++inputs) {
             for (std::size_t slot = 0; slot < slots; ++slot) {
                 std::vector<unsigned> fired;
@@ -1078,25 +1125,23 @@ private:
     }
 
     // A step from composed state composed_ (Composed), without a branch on what the checks
-    // return: the inputs that occur move a local composed state as they are polled (so a check
-    // that throws leaves the VM as it was) and gather as bits in input order. An input with an
-    // action, or a violation with a hook to call, hands the step to step_general before anything
-    // changed, so that callbacks see the states they would.
+    // return: the inputs that occur gather as bits in input order while they are polled, and
+    // one table entry gives where they lead. An input with an action, or a violation with a
+    // hook to call, hands the step to step_general before anything changed, so that callbacks
+    // see the states they would.
     template <class M>
     const std::vector<unsigned>& step_composed(const Sets<M>& sets, M& previous) {
         const Composed& composed = derived_.composed;
         const bool edge = options_.inputs == Inputs::edge;
         M current;
-        std::uint32_t c = composed_, inputs = 0, violations = 0;
+        std::uint32_t inputs = 0;
         poll_each([&](const Poll& p, bool value) {
             current.set_if(p.event, value);
             const std::uint32_t occurs = std::uint32_t{value} & ~std::uint32_t{edge && previous.test(p.event)};
-            const std::uint32_t take = 0u - occurs;   // all ones if the input occurs
-            const std::uint32_t next = p.successors[c];
-            c ^= (c ^ (next & 0xFFFFu)) & take;
-            violations += (next >> 16) & take;
-            inputs |= p.bit & take;
+            inputs |= p.bit & (0u - occurs);
         });
+        const std::uint32_t after = composed.after[composed_ << composed.inputs | inputs];
+        const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
         const M occurred = edge ? previous.complement_in(current) : current;
         previous = current;
         if ((inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
@@ -1108,15 +1153,14 @@ private:
         violations_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(total, kMaxViolations));
         const std::vector<unsigned>* const fired = &composed.fired[inputs * composed.slot_event.size()];
         if (options_.control == Control::if_quiet && inputs != 0) return settle(c, fired[0]);
-        const unsigned n = composed.choices_count[c];
-        unsigned pick = 0;
-        if (n > 1 && options_.policy == Policy::uniform) {
-            pick = scale_below(rng_.next(), n);
-        } else if (n > 1) {
+        const Head& head = composed.heads[c];
+        std::uint32_t choice = head.choice;
+        if (options_.policy == Policy::uniform) {
+            choice = composed.choices[head.first + pick_uniform(rng_, head.count, composed.draws_vary)];
+        } else if (head.count > 1) {
             settle(c, fired[0]);   // the weighted policy reads the supervisors' states
-            pick = composed.enabled[c].count_below(select_listed(composed.enabled[c]));
+            choice = composed.choices[head.first + composed.enabled[c].count_below(select_listed(composed.enabled[c]))];
         }
-        const std::uint32_t choice = composed.choices[composed.choices_first[c] + pick];
         const unsigned slot = choice >> 16, event = composed.slot_event[slot];
         settle(choice & 0xFFFFu, fired[slot]);
         if (acting_.test(event)) {
