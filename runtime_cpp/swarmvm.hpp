@@ -1156,7 +1156,9 @@ private:
         const Head& head = composed.heads[c];
         std::uint32_t choice = head.choice;
         if (options_.policy == Policy::uniform) {
-            choice = composed.choices[head.first + pick_uniform(rng_, head.count, composed.draws_vary)];
+            if (composed.draws_vary || head.count > 1) {
+                choice = composed.choices[head.first + pick_uniform(rng_, head.count, composed.draws_vary)];
+            }
         } else if (head.count > 1) {
             settle(c, fired[0]);   // the weighted policy reads the supervisors' states
             choice = composed.choices[head.first + composed.enabled[c].count_below(select_listed(composed.enabled[c]))];
