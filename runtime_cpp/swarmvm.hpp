@@ -681,7 +681,7 @@ public:
     void set_action(unsigned event, Action action) {
         require(event);
         actions_[event] = std::move(action);
-        rebuild_polls();
+        note_actions();
     }
     void set_check(const std::string& event, Check check) { set_check(image_.event_index(event), std::move(check)); }
     void set_check(unsigned event, Check check) { store_check(event, std::move(check), CheckCall()); }
@@ -724,8 +724,9 @@ public:
         return out;
     }
 
-    // One VM step (docs/semantics.md); returns the events that fired, in the order applied.
-    // Images of up to 64 events step with one-word sets.
+    // One VM step (docs/semantics.md); returns the events that fired, in the order applied (a
+    // reference valid until the next step() or load()). Images of up to 64 events step with
+    // one-word sets.
     const std::vector<unsigned>& step() {
         return image_.num_events <= 64 ? step_with(derived_.narrow, previous_narrow_)
                                        : step_with(derived_.wide, previous_);
@@ -793,7 +794,7 @@ private:
         bool (*call)(void* callable, void* data);
         void* callable;
         void* data;
-        std::uint32_t bit;                 // the event's bit in a set of inputs (Composed::fired)
+        std::uint32_t bit;                 // input_bit() of the event
         unsigned event;
     };
 
@@ -833,24 +834,35 @@ private:
         if (polling_) throw std::logic_error(std::string("a check cannot ") + what + " while the VM polls its checks");
     }
 
-    // The poll list from the bound checks, and the events with actions: rebuilt whenever a
-    // binding or the image changes, so the step neither walks unbound events nor tests for an
-    // empty Check or Action per event.
+    // The poll list from the bound checks: rebuilt whenever a binding or the image changes, so
+    // the step neither walks unbound events nor tests for an empty Check.
     void rebuild_polls() {
-        const Composed& composed = derived_.composed;
         polls_.list.clear();
         polls_.stale = false;
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            const unsigned e = derived_.input_order[i];
+            if (!checks_[e]) continue;
+            const CheckCall& how = check_calls_[e];
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], input_bit(i), e});
+        }
+        note_actions();
+    }
+
+    // acting_ and acting_inputs_ from the bound actions, so that the step tests one set instead
+    // of an Action per event. Leaves the poll list alone: a check may set an action.
+    void note_actions() {
         acting_ = Mask();
         acting_inputs_ = 0;
         for (unsigned e = 0; e < image_.num_events; ++e) acting_.set_if(e, static_cast<bool>(actions_[e]));
         for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
-            const unsigned e = derived_.input_order[i];
-            const std::uint32_t bit = composed.count != 0 ? std::uint32_t{1} << i : 0;
-            if (acting_.test(e)) acting_inputs_ |= bit;
-            if (!checks_[e]) continue;
-            const CheckCall& how = check_calls_[e];
-            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], bit, e});
+            if (acting_.test(derived_.input_order[i])) acting_inputs_ |= input_bit(i);
         }
+    }
+
+    // The bit of the i-th input (in input order) in a set of inputs (Composed), 0 without
+    // composed states.
+    std::uint32_t input_bit(std::size_t i) const {
+        return derived_.composed.count != 0 ? std::uint32_t{1} << i : 0;
     }
 
     // Composed states: the tuples of supervisor states that steps can reach from the initial
@@ -1140,11 +1152,12 @@ private:
             const std::uint32_t occurs = std::uint32_t{value} & ~std::uint32_t{edge && previous.test(p.event)};
             inputs |= p.bit & (0u - occurs);
         });
-        const std::uint32_t after = composed.after[composed_ << composed.inputs | inputs];
-        const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
         const M occurred = edge ? previous.complement_in(current) : current;
         previous = current;
-        if ((inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
+        // composed_ is read after the checks, which may have reset the VM or fired an event.
+        const std::uint32_t after = composed_ != kNoComposed ? composed.after[composed_ << composed.inputs | inputs] : 0;
+        const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
+        if (composed_ == kNoComposed || (inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
             fired_.clear();
             return step_general(sets, occurred);
         }
