@@ -6,7 +6,9 @@
 // S: both VMs fired the same events and reached the same states and violation counts at every
 // step; H: the hook was called once per violation counted; A: the actions ran once per fired
 // event, in the order fired; T: every action saw its own event's transition applied (checked
-// for the step's last event, whose transition ends the step). Usage: step_paths IMAGE.svm
+// for the step's last event, whose transition ends the step). A last line "set-in-check A":
+// A, actions that a check sets while the VM polls run in that same step, once per fired event.
+// Usage: step_paths IMAGE.svm
 #include <cstdint>
 #include <cstdio>
 #include <vector>
@@ -67,6 +69,30 @@ void compare(const swarmvm::Image& image, swarmvm::Inputs inputs, swarmvm::Contr
                 hook_calls == hooked.vm.violations() ? 1 : 0, actions ? 1 : 0, states ? 1 : 0);
 }
 
+// A check sets an action on every event while the VM polls, from the first step on: the
+// actions run in that step already, for every event it fires (the general step's order).
+void action_set_by_check(const swarmvm::Image& image) {
+    Run run{swarmvm::VM(image)};
+    bind_inputs(run);
+    std::vector<unsigned> acted;
+    bool set = false;
+    unsigned first_input = 0;
+    while (image.controllable.test(first_input)) ++first_input;
+    run.vm.set_check(first_input, [&run, &acted, &set, &image](void*) {
+        for (unsigned e = 0; !set && e < image.num_events; ++e) {
+            run.vm.set_action(e, [&acted, e](void*) { acted.push_back(e); });
+        }
+        set = true;
+        return ((run.inputs = run.inputs * 1103515245u + 12345u) >> 24) < 64u;
+    });
+    bool same = true;
+    for (unsigned step = 0; step < 50; ++step) {
+        acted.clear();
+        same = same && run.vm.step() == acted;
+    }
+    std::printf("set-in-check %d\n", same ? 1 : 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -82,5 +108,6 @@ int main(int argc, char** argv) {
             }
         }
     }
+    action_set_by_check(image);
     return 0;
 }

@@ -32,4 +32,4 @@ def test_composed_and_general_steps_agree(step_paths, supervisor, tmp_path):
     image.write_bytes(compile_inputs([supervisor]).image)
     lines = subprocess.run([str(step_paths), str(image)], check=True, capture_output=True, text=True,
                            timeout=60).stdout.splitlines()
-    assert lines == ["%s same=1 hook=1 actions=1 states=1" % options for options in OPTIONS]
+    assert lines == ["%s same=1 hook=1 actions=1 states=1" % options for options in OPTIONS] + ["set-in-check 1"]
