@@ -1145,21 +1145,20 @@ private:
     const std::vector<unsigned>& step_composed(const Sets<M>& sets, M& previous) {
         const Composed& composed = derived_.composed;
         const bool edge = options_.inputs == Inputs::edge;
-        M current;
+        M current;   // the checks' values: only edge inputs need them, at the next step
         std::uint32_t inputs = 0;
         poll_each([&](const Poll& p, bool value) {
-            current.set_if(p.event, value);
+            if (edge) current.set_if(p.event, value);
             const std::uint32_t occurs = std::uint32_t{value} & ~std::uint32_t{edge && previous.test(p.event)};
             inputs |= p.bit & (0u - occurs);
         });
-        const M occurred = edge ? previous.complement_in(current) : current;
-        previous = current;
+        if (edge) previous = current;
         // composed_ is read after the checks, which may have reset the VM or fired an event.
         const std::uint32_t after = composed_ != kNoComposed ? composed.after[composed_ << composed.inputs | inputs] : 0;
         const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
         if (composed_ == kNoComposed || (inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
             fired_.clear();
-            return step_general(sets, occurred);
+            return step_general(sets, occurred_in<M>(inputs));
         }
         // Saturating, without a branch: violations are as likely as the inputs that cause them.
         const std::uint64_t total = std::uint64_t{violations_} + violations;
@@ -1184,6 +1183,16 @@ private:
             return fired_;
         }
         return fired[slot];
+    }
+
+    // The events of a set of inputs (Composed), as a set of events.
+    template <class M>
+    M occurred_in(std::uint32_t inputs) const {
+        M occurred;
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            occurred.set_if(derived_.input_order[i], (inputs & input_bit(i)) != 0);
+        }
+        return occurred;
     }
 
     // Makes composed state c the supervisors' states; returns `fired`.
