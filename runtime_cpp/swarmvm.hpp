@@ -1017,7 +1017,9 @@ private:
             out.globals.insert(out.globals.end(), tuple.begin(), tuple.end());
             return numbers.emplace(key, static_cast<std::uint16_t>(numbers.size())).first->second;
         };
-        for (unsigned s = 0; s < n_sups; ++s) tuple[s] = static_cast<std::uint16_t>(image.sup_first_state[s] + image.sup_initial[s]);
+        for (unsigned s = 0; s < n_sups; ++s) {
+            tuple[s] = static_cast<std::uint16_t>(image.sup_first_state[s] + image.sup_initial[s]);
+        }
         number();
         for (std::size_t c = 0; c < numbers.size(); ++c) {
             for (unsigned e = 0; e < n_events; ++e) {
@@ -1154,9 +1156,10 @@ private:
         });
         if (edge) previous = current;
         // composed_ is read after the checks, which may have reset the VM or fired an event.
-        const std::uint32_t after = composed_ != kNoComposed ? composed.after[composed_ << composed.inputs | inputs] : 0;
+        const bool inside = composed_ != kNoComposed;
+        const std::uint32_t after = inside ? composed.after[composed_ << composed.inputs | inputs] : 0;
         const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
-        if (composed_ == kNoComposed || (inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
+        if (!inside || (inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
             fired_.clear();
             return step_general(sets, occurred_in<M>(inputs));
         }
