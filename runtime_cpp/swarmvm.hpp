@@ -549,6 +549,12 @@ public:
         state_ = x;
         return x;
     }
+    // The draw next() would return, the state advanced only if `advance`: without a branch.
+    std::uint32_t next_if(bool advance) {
+        const std::uint32_t before = state_, x = next();
+        state_ ^= (x ^ before) & (0u - std::uint32_t{!advance});
+        return x;
+    }
 
 private:
     std::uint32_t state_ = 1;
@@ -557,6 +563,22 @@ private:
 // An index in [0, n) for n < 65536 from a 32-bit draw: the top 16 bits scaled by n.
 inline unsigned scale_below(std::uint32_t draw, unsigned n) {
     return static_cast<unsigned>(((draw >> 16) * n) >> 16);
+}
+
+// The uniform policy's index among n choices: no draw unless n > 1 (docs/semantics.md).
+// `varies`: whether n > 1 in some steps and not in others (a hint, see the XorShift32 overload).
+template <class Rng>
+unsigned pick_uniform(Rng& rng, unsigned n, bool /*varies*/) {
+    return n > 1 ? scale_below(rng.next(), n) : 0;
+}
+
+// The same for the specified generator. When n > 1 in some steps and not in others, a branch
+// on it is as good as random to a predictor: the next state is then computed in every step and
+// kept only if n > 1 (scale_below(draw, n) is 0 for n <= 1). Otherwise the branch always goes
+// the same way, and drawing in every step would only lengthen the step.
+inline unsigned pick_uniform(XorShift32& rng, unsigned n, bool varies) {
+    if (!varies) return n > 1 ? scale_below(rng.next(), n) : 0;
+    return scale_below(rng.next_if(n > 1), n);
 }
 
 // A member function as a VM callback: vm.set_action("EV_x", member(this, &C::OnX)) or
@@ -633,6 +655,7 @@ public:
         previous_narrow_ = BasicMask<1>();
         violations_ = 0;
         rng_.seed(options_.seed);
+        relocate();
     }
 
     // Binds an action and/or a check to an event given by name ("EV_x" or "x") or index.
@@ -658,6 +681,7 @@ public:
     void set_action(unsigned event, Action action) {
         require(event);
         actions_[event] = std::move(action);
+        note_actions();
     }
     void set_check(const std::string& event, Check check) { set_check(image_.event_index(event), std::move(check)); }
     void set_check(unsigned event, Check check) { store_check(event, std::move(check), CheckCall()); }
@@ -700,8 +724,9 @@ public:
         return out;
     }
 
-    // One VM step (docs/semantics.md); returns the events that fired, in the order applied.
-    // Images of up to 64 events step with one-word sets.
+    // One VM step (docs/semantics.md); returns the events that fired, in the order applied (a
+    // reference valid until the next step() or load()). Images of up to 64 events step with
+    // one-word sets.
     const std::vector<unsigned>& step() {
         return image_.num_events <= 64 ? step_with(derived_.narrow, previous_narrow_)
                                        : step_with(derived_.wide, previous_);
@@ -716,7 +741,10 @@ public:
             callback_threw(event, "check");
         }
     }
-    void fire(unsigned event) { apply(event); }
+    void fire(unsigned event) {
+        composed_ = kNoComposed;   // the next step() finds its composed state again
+        apply(event);
+    }
 
     const Image& image() const { return image_; }
     const Options& options() const { return options_; }
@@ -766,6 +794,7 @@ private:
         bool (*call)(void* callable, void* data);
         void* callable;
         void* data;
+        std::uint32_t bit;                 // input_bit() of the event
         unsigned event;
     };
 
@@ -810,12 +839,77 @@ private:
     void rebuild_polls() {
         polls_.list.clear();
         polls_.stale = false;
-        for (unsigned e : derived_.input_order) {
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            const unsigned e = derived_.input_order[i];
             if (!checks_[e]) continue;
             const CheckCall& how = check_calls_[e];
-            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], e});
+            polls_.list.push_back(Poll{how.call, how.locate(checks_[e]), data_[e], input_bit(i), e});
+        }
+        note_actions();
+    }
+
+    // acting_ and acting_inputs_ from the bound actions, so that the step tests one set instead
+    // of an Action per event. Leaves the poll list alone: a check may set an action.
+    void note_actions() {
+        acting_ = Mask();
+        acting_inputs_ = 0;
+        for (unsigned e = 0; e < image_.num_events; ++e) acting_.set_if(e, static_cast<bool>(actions_[e]));
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            if (acting_.test(derived_.input_order[i])) acting_inputs_ |= input_bit(i);
         }
     }
+
+    // The bit of the i-th input (in input order) in a set of inputs (Composed), 0 without
+    // composed states.
+    std::uint32_t input_bit(std::size_t i) const {
+        return derived_.composed.count != 0 ? std::uint32_t{1} << i : 0;
+    }
+
+    // Composed states: the tuples of supervisor states that steps can reach from the initial
+    // tuple (the supervisors' synchronous product, with the inputs' violations: a supervisor
+    // without a transition on an input stays), numbered breadth first from 0, the initial tuple.
+    // Built at load when small (kComposedCells, kFiredLists). A step then gathers the inputs
+    // that occur as bits while it polls, moves by all of them with one table entry, takes its
+    // choice from one list per composed state, and returns one of the lists of fired events
+    // made here (one per set of inputs and choice) instead of building one: a branch per
+    // occurring input or per event pushed would be as good as random to a predictor, and
+    // mispredicted branches and a chain of dependent loads per input cost the small models'
+    // steps more than all the rest.
+    static constexpr std::size_t kComposedCells = std::size_t{1} << 14;   // of each table: 64 KB
+    static constexpr std::size_t kFiredLists = 1024;                      // sets of inputs x slots
+    static constexpr unsigned kNoComposed = 0xFFFF;
+    static constexpr unsigned kNoEvent = 255;       // above every event (E <= 255)
+
+    // A composed state's choices: choices[first .. first + count), the first one copied here
+    // so that a state with one choice or none takes it with one load less.
+    struct Head {
+        std::uint32_t choice;
+        std::uint32_t first;
+        std::uint32_t count;
+    };
+
+    struct Composed {
+        std::size_t count = 0;                      // composed states; 0: none built
+        unsigned inputs = 0;                        // uncontrollable events (bits of a set of inputs)
+        std::vector<std::uint32_t> after;           // [c << inputs | set of inputs]: the composed state
+                                                    // reached by the inputs, in input order, above the
+                                                    // violations they count << 16
+        std::vector<std::uint16_t> globals;         // [c * supervisors + s]: s's global state in c
+        std::vector<std::uint16_t> locals;          // ... and its own state number
+        std::vector<Head> heads;                    // per c: its choices, in event order: the successor
+        std::vector<std::uint32_t> choices;         // above the slot << 16 of each of its enabled
+                                                    // events, or (none enabled) c above slot 0
+        std::vector<Mask> enabled;                  // c's enabled events as a set
+        bool draws_vary = false;                    // some composed states draw (two choices or
+                                                    // more), others do not (pick_uniform)
+        std::vector<unsigned> slot_event;           // per slot: kNoEvent, then the controllable events
+        std::vector<std::vector<unsigned>> fired;   // [inputs * slots + slot]: the fired events of a
+                                                    // step whose inputs, as bits in input order,
+                                                    // and choice are those
+        std::vector<std::uint64_t> place;           // per supervisor: its place value in a tuple's key
+        std::vector<std::uint64_t> keys;            // the composed states' keys, ascending,
+        std::vector<std::uint16_t> key_state;       // ... and the composed state of each
+    };
 
     // Lookup structures derived from an image (and the priority option) once, at load.
     struct Derived {
@@ -828,6 +922,7 @@ private:
         std::vector<unsigned> event_sups;               // the supervisors holding each event, event
         std::vector<unsigned> event_sups_first;         // by event: e's from event_sups_first[e] on
         std::vector<unsigned> rank;                     // per event: rank for policy first
+        Composed composed;
     };
 
     static Derived derive(const Image& image, const Options& options) {
@@ -886,7 +981,116 @@ private:
                 }
             }
         }
+        d.composed = compose(image, d);
         return d;
+    }
+
+    // The composed states of an image with a successor table, or none (count 0) when there are
+    // more than kComposedCells allows or a tuple's key would not fit 64 bits. Breadth first:
+    // every composed state's successors are numbered before the next state is expanded.
+    static Composed compose(const Image& image, const Derived& d) {
+        const unsigned n_sups = image.num_supervisors, n_events = image.num_events;
+        const std::size_t limit = std::min<std::size_t>(kComposedCells / n_events, kNoComposed);
+        const std::size_t n_inputs = d.input_order.size();
+        Composed out;
+        out.slot_event.push_back(kNoEvent);
+        image.controllable.for_each([&](unsigned e) { out.slot_event.push_back(e); });
+        const std::size_t slots = out.slot_event.size();
+        if (n_inputs >= 16 || (std::size_t{1} << n_inputs) * slots > kFiredLists) return Composed();
+        std::uint64_t place = 1;
+        for (unsigned s = 0; s < n_sups; ++s) {
+            if (d.successors.empty() || place > UINT64_MAX / image.sup_num_states[s]) return Composed();
+            out.place.push_back(place);
+            place *= image.sup_num_states[s];
+        }
+        std::map<std::uint64_t, std::uint16_t> numbers;   // key -> composed state
+        std::vector<std::uint32_t> rows;                  // [c * events + e]: c's successor on e above
+                                                          // its violations << 16 (kNoComposed: never taken)
+        std::vector<std::uint16_t> tuple(n_sups);
+        // The number of the tuple of global states `tuple`, added if new; kNoComposed past the limit.
+        const auto number = [&]() -> unsigned {
+            std::uint64_t key = 0;
+            for (unsigned s = 0; s < n_sups; ++s) key += (tuple[s] - image.sup_first_state[s]) * out.place[s];
+            const auto found = numbers.find(key);
+            if (found != numbers.end()) return found->second;
+            if (numbers.size() == limit) return kNoComposed;
+            out.globals.insert(out.globals.end(), tuple.begin(), tuple.end());
+            return numbers.emplace(key, static_cast<std::uint16_t>(numbers.size())).first->second;
+        };
+        for (unsigned s = 0; s < n_sups; ++s) {
+            tuple[s] = static_cast<std::uint16_t>(image.sup_first_state[s] + image.sup_initial[s]);
+        }
+        number();
+        for (std::size_t c = 0; c < numbers.size(); ++c) {
+            for (unsigned e = 0; e < n_events; ++e) {
+                std::copy_n(out.globals.begin() + static_cast<std::ptrdiff_t>(c * n_sups), n_sups, tuple.begin());
+                std::uint32_t violations = 0;
+                for (unsigned k = d.event_sups_first[e]; k < d.event_sups_first[e + 1]; ++k) {
+                    const unsigned s = d.event_sups[k];
+                    const std::uint32_t next = d.successors[e * d.num_globals + tuple[s]];
+                    if (next == kNoSuccessor) {
+                        ++violations;
+                    } else {
+                        tuple[s] = static_cast<std::uint16_t>(next);
+                    }
+                }
+                if (violations != 0 && image.controllable.test(e)) {   // never chosen here
+                    rows.push_back(kNoComposed);
+                    continue;
+                }
+                const unsigned successor = number();
+                if (successor == kNoComposed) return Composed();
+                rows.push_back(successor | violations << 16);
+            }
+        }
+        out.count = numbers.size();
+        out.inputs = static_cast<unsigned>(n_inputs);
+        if ((out.count << n_inputs) > kComposedCells) return Composed();
+        for (std::size_t c = 0; c < out.count; ++c) {
+            const std::uint32_t* const next = &rows[c * n_events];   // c's successors by event
+            for (std::uint32_t inputs = 0; inputs < (std::uint32_t{1} << n_inputs); ++inputs) {
+                std::uint32_t reached = static_cast<std::uint32_t>(c), violations = 0;
+                for (std::size_t i = 0; i < n_inputs; ++i) {
+                    if (((inputs >> i) & 1u) == 0) continue;
+                    const std::uint32_t entry = rows[reached * n_events + d.input_order[i]];
+                    reached = entry & 0xFFFFu;
+                    violations += entry >> 16;
+                }
+                out.after.push_back(reached | violations << 16);
+            }
+            Mask enabled = image.controllable;
+            for (unsigned s = 0; s < n_sups; ++s) {
+                const unsigned g = out.globals[c * n_sups + s];
+                enabled &= d.wide.allowed[g];
+                out.locals.push_back(static_cast<std::uint16_t>(g - image.sup_first_state[s]));
+            }
+            out.enabled.push_back(enabled);
+            const std::uint32_t first = static_cast<std::uint32_t>(out.choices.size());
+            for (std::uint32_t slot = 1; slot < slots; ++slot) {
+                const unsigned e = out.slot_event[slot];
+                if (enabled.test(e)) out.choices.push_back((next[e] & 0xFFFFu) | slot << 16);
+            }
+            if (!enabled.any()) out.choices.push_back(static_cast<std::uint32_t>(c));
+            out.heads.push_back(Head{out.choices[first], first, enabled.count()});
+        }
+        const auto draws = [](const Head& head) { return head.count > 1; };
+        out.draws_vary = std::any_of(out.heads.begin(), out.heads.end(), draws) &&
+                         !std::all_of(out.heads.begin(), out.heads.end(), draws);
+        for (std::uint32_t inputs = 0; inputs < (std::uint32_t{1} << n_inputs); ++inputs) {
+            for (std::size_t slot = 0; slot < slots; ++slot) {
+                std::vector<unsigned> fired;
+                for (std::size_t i = 0; i < n_inputs; ++i) {
+                    if ((inputs >> i) & 1u) fired.push_back(d.input_order[i]);
+                }
+                if (slot != 0) fired.push_back(out.slot_event[slot]);
+                out.fired.push_back(std::move(fired));
+            }
+        }
+        for (const auto& entry : numbers) {
+            out.keys.push_back(entry.first);
+            out.key_state.push_back(entry.second);
+        }
+        return out;
     }
 
     template <class M>
@@ -898,39 +1102,147 @@ private:
         return mask;
     }
 
+    // A step: from the composed state (Composed) when the VM is in one, else the general way.
     template <class M>
     const std::vector<unsigned>& step_with(const Sets<M>& sets, M& previous) {
-        M current;
+        if (composed_ != kNoComposed) return step_composed(sets, previous);
+        return step_general(sets, take_inputs(previous));
+    }
+
+    // Step 1: calls f(poll, value) for every bound check in input order, with its value.
+    template <class F>
+    SWARMVM_INLINE void poll_each(F&& f) {
         if (polls_.stale) rebuild_polls();
         polling_ = true;
         for (const Poll& p : polls_.list) {
-            bool occurs;
+            bool value;
             try {
-                occurs = p.call(p.callable, p.data);
+                value = p.call(p.callable, p.data);
             } catch (...) {
                 polling_ = false;
                 callback_threw(p.event, "check");
             }
-            current.set_if(p.event, occurs);
+            f(p, value);
         }
         polling_ = false;
+    }
+
+    // Steps 1 and 2: polls the bound checks and returns the events that occur.
+    template <class M>
+    M take_inputs(M& previous) {
+        M current;
+        poll_each([&](const Poll& p, bool value) { current.set_if(p.event, value); });
         fired_.clear();     // after the checks: one that throws leaves the last step's events
-        M occurred = current;
-        if (options_.inputs == Inputs::edge) occurred = previous.complement_in(current);
+        const M occurred = options_.inputs == Inputs::edge ? previous.complement_in(current) : current;
         previous = current;
+        return occurred;
+    }
+
+    // A step from composed state composed_ (Composed), without a branch on what the checks
+    // return: the inputs that occur gather as bits in input order while they are polled, and
+    // one table entry gives where they lead. An input with an action, or a violation with a
+    // hook to call, hands the step to step_general before anything changed, so that callbacks
+    // see the states they would.
+    template <class M>
+    const std::vector<unsigned>& step_composed(const Sets<M>& sets, M& previous) {
+        const Composed& composed = derived_.composed;
+        const bool edge = options_.inputs == Inputs::edge;
+        M current;   // the checks' values: only edge inputs need them, at the next step
+        std::uint32_t inputs = 0;
+        poll_each([&](const Poll& p, bool value) {
+            if (edge) current.set_if(p.event, value);
+            const std::uint32_t occurs = std::uint32_t{value} & ~std::uint32_t{edge && previous.test(p.event)};
+            inputs |= p.bit & (0u - occurs);
+        });
+        if (edge) previous = current;
+        // composed_ is read after the checks, which may have reset the VM or fired an event.
+        const bool inside = composed_ != kNoComposed;
+        const std::uint32_t after = inside ? composed.after[composed_ << composed.inputs | inputs] : 0;
+        const std::uint32_t c = after & 0xFFFFu, violations = after >> 16;
+        if (!inside || (inputs & acting_inputs_) != 0 || (on_violation_ && violations != 0)) {
+            fired_.clear();
+            return step_general(sets, occurred_in<M>(inputs));
+        }
+        // Saturating, without a branch: violations are as likely as the inputs that cause them.
+        const std::uint64_t total = std::uint64_t{violations_} + violations;
+        violations_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(total, kMaxViolations));
+        const std::vector<unsigned>* const fired = &composed.fired[inputs * composed.slot_event.size()];
+        if (options_.control == Control::if_quiet && inputs != 0) return settle(c, fired[0]);
+        const Head& head = composed.heads[c];
+        std::uint32_t choice = head.choice;
+        if (options_.policy == Policy::uniform) {
+            if (composed.draws_vary || head.count > 1) {
+                choice = composed.choices[head.first + pick_uniform(rng_, head.count, composed.draws_vary)];
+            }
+        } else if (head.count > 1) {
+            settle(c, fired[0]);   // the weighted policy reads the supervisors' states
+            choice = composed.choices[head.first + composed.enabled[c].count_below(select_listed(composed.enabled[c]))];
+        }
+        const unsigned slot = choice >> 16, event = composed.slot_event[slot];
+        settle(choice & 0xFFFFu, fired[slot]);
+        if (acting_.test(event)) {
+            fired_ = fired[slot];   // the action may load another image, and its lists
+            act(event);
+            return fired_;
+        }
+        return fired[slot];
+    }
+
+    // The events of a set of inputs (Composed), as a set of events.
+    template <class M>
+    M occurred_in(std::uint32_t inputs) const {
+        M occurred;
+        for (std::size_t i = 0; i < derived_.input_order.size(); ++i) {
+            occurred.set_if(derived_.input_order[i], (inputs & input_bit(i)) != 0);
+        }
+        return occurred;
+    }
+
+    // Makes composed state c the supervisors' states; returns `fired`.
+    const std::vector<unsigned>& settle(unsigned c, const std::vector<unsigned>& fired) {
+        const Composed& composed = derived_.composed;
+        const std::size_t n = states_.size();
+        composed_ = c;
+        for (std::size_t s = 0; s < n; ++s) {
+            globals_[s] = composed.globals[c * n + s];
+            states_[s] = composed.locals[c * n + s];
+        }
+        return fired;
+    }
+
+    // Steps 3 to 6 supervisor by supervisor, then the composed state of the outcome (if any).
+    // Out of line: rare where composed states exist. composed_ is cleared first, so that an
+    // action that throws leaves the next step to find it again.
+    template <class M>
+    SWARMVM_NOINLINE const std::vector<unsigned>& step_general(const Sets<M>& sets, const M& occurred) {
+        composed_ = kNoComposed;
         const auto fire_input = [this](unsigned e) {
             fired_.push_back(e);
             apply(e);
         };
         (occurred & sets.public_inputs).for_each(fire_input);     // input order: public first
         (occurred & sets.private_inputs).for_each(fire_input);
-        if (!fired_.empty() && options_.control == Control::if_quiet) return fired_;
-        const M mask = enabled_in(sets);
-        if (!mask.any()) return fired_;
-        const unsigned choice = select(mask);
-        fired_.push_back(choice);
-        apply(choice);
+        if (fired_.empty() || options_.control != Control::if_quiet) {
+            const M mask = enabled_in(sets);
+            if (mask.any()) {
+                const unsigned choice = select(mask);
+                fired_.push_back(choice);
+                apply(choice);
+            }
+        }
+        relocate();
         return fired_;
+    }
+
+    // composed_ from the supervisors' states: their composed state, or kNoComposed.
+    void relocate() {
+        const Composed& composed = derived_.composed;
+        composed_ = kNoComposed;
+        if (composed.count == 0) return;
+        std::uint64_t key = 0;
+        for (std::size_t s = 0; s < states_.size(); ++s) key += states_[s] * composed.place[s];
+        const auto at = std::lower_bound(composed.keys.begin(), composed.keys.end(), key);
+        if (at != composed.keys.end() && *at == key) composed_ = composed.key_state[at - composed.keys.begin()];
     }
 
     void require(unsigned event) const {
@@ -1091,6 +1403,9 @@ private:
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;
     std::vector<std::uint16_t> globals_;   // per supervisor: its state's global index
+    unsigned composed_ = kNoComposed;      // the composed state of states_, or kNoComposed
+    Mask acting_;                          // the events with an action
+    std::uint32_t acting_inputs_ = 0;      // ... among the inputs, as Poll::bit
     Mask previous_;                   // check values of the previous step (edge), for E > 64
     BasicMask<1> previous_narrow_;    // ... for E <= 64
     std::uint32_t violations_ = 0;
