@@ -90,7 +90,9 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define MASK_WIDTH(m) ((uint8_t)((m) - 1u) < SVM_MASK_BYTES ? (uint8_t)(m) : (uint8_t)1u)
 
 /* Set bits of a byte. AVR shifts one bit per instruction, so there a table in flash (256 B,
- * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic. */
+ * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic.
+ * Measured on the Kilobot core at -O3: a 16 B nibble table or a 128 B one (x & 0x7F, plus the
+ * top bit) saved only 50-200 B, the code growing, and cost 1-5 % of a step. */
 #if SVM_POPCOUNT_TABLE
 static const uint8_t ones_in[256] SVM_PROGMEM = {
     0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5,
@@ -1352,7 +1354,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
     }
 #endif
     /* One call of nth_event for one event and for the uniform draw (no draw for one event): a
-     * call each cost 40-138 B of AVR flash at -O3, where both are inlined. */
+     * call each cost 30-138 B of AVR flash at -O3, where both are inlined. */
     return nth_event(enabled, count == 1u ? 0u : uniform_index(svm_random(vm), count));
 }
 
@@ -1400,9 +1402,10 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 /* The step for masks of `m` bytes. Called with the compile-time SVM_MASK_BYTES when the image's
  * masks have exactly that width (builds with the model's exact limits): the compiler then
  * folds the record sizes and reads each mask in one go. Every event fires from one loop with
- * one call of apply: a second call for the control phase, both inlined at -O3, cost 300-440 B
- * of AVR flash (network_worker's Kilobot core was 4,416 B with it, over 4 kB). Measured against
- * it: as fast or faster with masks of 2 or more bytes, 2-4 % more AVR cycles with 1-byte masks. */
+ * one call of apply: a second call for the control phase, both inlined at -O3, cost 270-420 B
+ * of AVR flash (network_worker's Kilobot core 4,278 B, over 4 kB). Measured against it: as fast
+ * (within 0.2 %) or faster with masks of 2 or more bytes, 2-4 % more AVR cycles with 1-byte
+ * masks. docs/footprint.md, "Cost per step". */
 static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
 {
     const uint8_t *img = vm->image;
