@@ -11,6 +11,16 @@
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
+/* The transition code (apply), called once in the step: a function on the bare-metal Cortex-M4
+ * (CapBot, -Os), inlined elsewhere. Measured there (benchmarks/m4_cycles.py): inlined into the
+ * step, 2-5 % more instructions per step on the models with several supervisors (0.97x the
+ * baseline's on network_worker); out of line, 1.01-1.07x. */
+#if defined(__GNUC__) && defined(__arm__) && !defined(__linux__)
+#define SVM_APPLY __attribute__((noinline))
+#else
+#define SVM_APPLY SVM_INLINE
+#endif
+
 /* Load-time code (checks, life cycle, names, bindings) on a microcontroller: optimised for
  * size whatever the build's -O, so that -O3 (kilolib's flags) spends flash on the step only.
  * GCC compiles a `cold` function as if with -Os. */
@@ -236,6 +246,13 @@ static SVM_INLINE void cursor_skip_byte(cursor_t *c)
 /* Clear bit `bit` of the current byte. */
 static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
 
+/* A cursor over the one event `e` (no shift of a whole mask). */
+static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
+{
+    c->rest = (mask_t)(1u << (e & 7u));
+    c->base = (uint8_t)(e & 0xF8u);
+}
+
 #else /* MASK_ARRAY */
 
 static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
@@ -337,6 +354,17 @@ static SVM_INLINE void cursor_skip_byte(cursor_t *c)
 }
 
 static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest.b[c->at] ^= bit; }
+
+static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
+{
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        c->rest.b[i] = 0;
+    }
+    c->at = (uint8_t)(e >> 3);
+    c->rest.b[c->at] = (uint8_t)(1u << (e & 7u));
+    c->base = (uint8_t)(e & 0xF8u);
+}
 
 #endif /* MASK_ARRAY */
 
@@ -1150,7 +1178,7 @@ static void violation(svm_vm_t *vm, uint8_t event, uint8_t s)
 /* Docs/semantics.md step 3: move every supervisor that has the event, count violations, then
  * run the event's action. Supervisor records are walked in order, without multiplications.
  * `m` is the mask width: see step_m for why it is a parameter. */
-static SVM_INLINE void apply(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
+static SVM_APPLY void apply(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
     const uint8_t *img = vm->image;
     const uint8_t *states = img + vm->states_at, *targets = img + vm->targets_at;
@@ -1401,15 +1429,11 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 
 /* The step for masks of `m` bytes. Called with the compile-time SVM_MASK_BYTES when the image's
  * masks have exactly that width (builds with the model's exact limits): the compiler then
- * folds the record sizes and reads each mask in one go. Every event fires from one loop with
- * one call of apply: a second call for the control phase, both inlined at -O3, cost 270-420 B
- * of AVR flash (network_worker's Kilobot core 4,278 B, over 4 kB). Measured against it: as fast
- * (within 0.2 %) or faster with masks of 2 or more bytes, 2-4 % more AVR cycles with 1-byte
- * masks. docs/footprint.md, "Cost per step". */
+ * folds the record sizes and reads each mask in one go. */
 static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
 {
     const uint8_t *img = vm->image;
-    uint8_t src = vm->source, options = vm->options, fired = 0, phase = 0, todo = 0, bit = 0, event = 0;
+    uint8_t src = vm->source, options = vm->options, fired = 0, pass, count, event;
     mask_t valid = valid_events(vm);
     mask_t controllable = mask_and(mask_read(src, img + CONTROLLABLE_AT, m), valid);
     mask_t public_mask = mask_read(src, img + PUBLIC_AT(m), m);
@@ -1417,51 +1441,40 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
     /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
     mask_t current = poll(vm, mask_and(uncontrollable, public_mask), mask_and_not(uncontrollable, public_mask));
     mask_t occurring = current;
-    cursor_t inputs;
+    cursor_t fire;
     if (options & SVM_INPUTS_EDGE) {
         occurring = mask_and_not(current, mask_load(vm->previous));
     }
     mask_store(vm->previous, current, SVM_MASK_BYTES);
-    cursor_start(&inputs, mask_and(occurring, public_mask));
-    for (;;) {
-        /* The next event to fire, as `event` and its `bit` in its mask byte (`todo`: the events
-         * of that byte still to fire, from `bit` up): 3. the occurring events in input order,
-         * public (phase 0) then private (phase 1), a byte at a time; 4. then the control phase
-         * (with if-quiet, none after an input); 5-6: enabled set, selection (phase 2). */
-        while (todo == 0u) {
-            if (cursor_any(&inputs)) {
-                todo = cursor_byte(&inputs);
-                bit = 1;
-                event = inputs.base;
-                cursor_skip_byte(&inputs);
-            } else if (phase == 0u) {
-                phase = 1;
-                cursor_start(&inputs, mask_and_not(occurring, public_mask));
-            } else if (phase == 1u && !(mask_any(occurring) && (options & SVM_CONTROL_IF_QUIET))) {
-                mask_t enabled = enabled_set(vm, controllable, m);
-                uint8_t count = mask_count(enabled);
-                phase = 2;
-                if (count == 0u || (event = select_event(vm, enabled, count)) == 0xFFu) {
-                    return fired;
+    /* 3. The occurring events in input order, public (pass 0) then private (pass 1); then the
+     * selected event (pass 2). All fire from this one loop, so that -O3 inlines apply once on
+     * AVR: a second call for the control phase cost 270-420 B of the Kilobot core's flash
+     * (network_worker's 4,278 B, over 4 kB; docs/footprint.md, "Cost per step"). */
+    for (pass = 0, cursor_start(&fire, mask_and(occurring, public_mask));; pass++) {
+        for (; cursor_any(&fire); cursor_skip_byte(&fire)) {
+            uint8_t todo = cursor_byte(&fire), bit = 1;
+            for (event = fire.base; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
+                if (todo & 1u) {
+                    /* Byte 0 spelled out for 1-byte masks: the compiler then drops apply's
+                     * byte arithmetic (measured: 3-5 % of an AVR step on those models). */
+                    apply(vm, event, m == 1u ? 0u : (uint8_t)(fire.base >> 3), bit, m);
+                    fired++;
                 }
-                todo = 1;
-                bit = (uint8_t)(1u << (event & 7u));
-            } else {
-                return fired;
             }
         }
-        while (!(todo & 1u)) {
-            todo = (uint8_t)(todo >> 1);
-            bit = (uint8_t)(bit << 1);
-            event++;
+        if (pass == 0u) {
+            cursor_start(&fire, mask_and_not(occurring, public_mask));
+            continue;
         }
-        /* Byte 0 spelled out for one-byte masks: the compiler then drops apply's byte arithmetic
-         * (measured: 1-byte models 2-3 % fewer AVR cycles per step than with event >> 3). */
-        apply(vm, event, m == 1u ? 0u : (uint8_t)(event >> 3), bit, m);
-        fired++;
-        todo = (uint8_t)(todo >> 1);
-        bit = (uint8_t)(bit << 1);
-        event++;
+        /* 4. Control phase (with if-quiet, none after an input); 5-6: enabled set, selection. */
+        if (pass == 1u && !(mask_any(occurring) && (options & SVM_CONTROL_IF_QUIET))) {
+            mask_t enabled = enabled_set(vm, controllable, m);
+            if ((count = mask_count(enabled)) != 0u && (event = select_event(vm, enabled, count)) != 0xFFu) {
+                cursor_single(&fire, event);
+                continue;
+            }
+        }
+        return fired;
     }
 }
 
