@@ -1448,7 +1448,7 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
     mask_store(vm->previous, current, SVM_MASK_BYTES);
     /* 3. The occurring events in input order, public (pass 0) then private (pass 1); then the
      * selected event (pass 2). All fire from this one loop, so that -O3 inlines apply once on
-     * AVR: a second call for the control phase cost 270-420 B of the Kilobot core's flash
+     * AVR: a second call for the control phase cost 330-390 B of the Kilobot core's flash
      * (network_worker's 4,278 B, over 4 kB; docs/footprint.md, "Cost per step"). */
     for (pass = 0, cursor_start(&fire, mask_and(occurring, public_mask));; pass++) {
         for (; cursor_any(&fire); cursor_skip_byte(&fire)) {
