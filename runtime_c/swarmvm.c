@@ -11,6 +11,16 @@
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
+/* The transition code (apply), called once in the step: a function on the bare-metal Cortex-M4
+ * (CapBot, -Os), inlined elsewhere. Measured there (benchmarks/m4_cycles.py): inlined into the
+ * step, 2-5 % more instructions per step on the models with several supervisors (0.97x the
+ * baseline's on network_worker); out of line, 1.01-1.07x. */
+#if defined(__GNUC__) && defined(__arm__) && !defined(__linux__)
+#define SVM_APPLY __attribute__((noinline))
+#else
+#define SVM_APPLY SVM_INLINE
+#endif
+
 /* Load-time code (checks, life cycle, names, bindings) on a microcontroller: optimised for
  * size whatever the build's -O, so that -O3 (kilolib's flags) spends flash on the step only.
  * GCC compiles a `cold` function as if with -Os. */
@@ -90,7 +100,9 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define MASK_WIDTH(m) ((uint8_t)((m) - 1u) < SVM_MASK_BYTES ? (uint8_t)(m) : (uint8_t)1u)
 
 /* Set bits of a byte. AVR shifts one bit per instruction, so there a table in flash (256 B,
- * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic. */
+ * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic.
+ * Measured on the Kilobot core at -O3: a 16 B nibble table or a 128 B one (x & 0x7F, plus the
+ * top bit) saved only 50-200 B, the code growing, and cost 1-5 % of a step. */
 #if SVM_POPCOUNT_TABLE
 static const uint8_t ones_in[256] SVM_PROGMEM = {
     0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5,
@@ -234,6 +246,13 @@ static SVM_INLINE void cursor_skip_byte(cursor_t *c)
 /* Clear bit `bit` of the current byte. */
 static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
 
+/* A cursor over the one event `e` (no shift of a whole mask). */
+static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
+{
+    c->rest = (mask_t)(1u << (e & 7u));
+    c->base = (uint8_t)(e & 0xF8u);
+}
+
 #else /* MASK_ARRAY */
 
 static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
@@ -335,6 +354,17 @@ static SVM_INLINE void cursor_skip_byte(cursor_t *c)
 }
 
 static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest.b[c->at] ^= bit; }
+
+static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
+{
+    uint8_t i;
+    for (i = 0; i < SVM_MASK_BYTES; i++) {
+        c->rest.b[i] = 0;
+    }
+    c->at = (uint8_t)(e >> 3);
+    c->rest.b[c->at] = (uint8_t)(1u << (e & 7u));
+    c->base = (uint8_t)(e & 0xF8u);
+}
 
 #endif /* MASK_ARRAY */
 
@@ -1148,7 +1178,7 @@ static void violation(svm_vm_t *vm, uint8_t event, uint8_t s)
 /* Docs/semantics.md step 3: move every supervisor that has the event, count violations, then
  * run the event's action. Supervisor records are walked in order, without multiplications.
  * `m` is the mask width: see step_m for why it is a parameter. */
-static SVM_INLINE void apply(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
+static SVM_APPLY void apply(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
     const uint8_t *img = vm->image;
     const uint8_t *states = img + vm->states_at, *targets = img + vm->targets_at;
@@ -1330,11 +1360,8 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         return nth_event(enabled, 0);
     }
 #endif
-    if (count == 1u) {
-        return nth_event(enabled, 0);
-    }
 #if SVM_WITH_WEIGHTED
-    if (policy == SVM_POLICY_WEIGHTED) {
+    if (policy == SVM_POLICY_WEIGHTED && count != 1u) {
         uint32_t total = 0, pick;
         cursor_t c;
         for (cursor_start(&c, enabled); cursor_any(&c);) {
@@ -1354,7 +1381,9 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         }
     }
 #endif
-    return nth_event(enabled, uniform_index(svm_random(vm), count));
+    /* One call of nth_event for one event and for the uniform draw (no draw for one event): a
+     * call each cost 30-138 B of AVR flash at -O3, where both are inlined. */
+    return nth_event(enabled, count == 1u ? 0u : uniform_index(svm_random(vm), count));
 }
 
 /* Docs/semantics.md step 1: the check values of the uncontrollable events, in input order
@@ -1404,7 +1433,7 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
 {
     const uint8_t *img = vm->image;
-    uint8_t src = vm->source, options = vm->options, fired = 0, pass, count;
+    uint8_t src = vm->source, options = vm->options, fired = 0, pass, count, event;
     mask_t valid = valid_events(vm);
     mask_t controllable = mask_and(mask_read(src, img + CONTROLLABLE_AT, m), valid);
     mask_t public_mask = mask_read(src, img + PUBLIC_AT(m), m);
@@ -1412,34 +1441,41 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
     /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
     mask_t current = poll(vm, mask_and(uncontrollable, public_mask), mask_and_not(uncontrollable, public_mask));
     mask_t occurring = current;
-    cursor_t inputs;
+    cursor_t fire;
     if (options & SVM_INPUTS_EDGE) {
         occurring = mask_and_not(current, mask_load(vm->previous));
     }
     mask_store(vm->previous, current, SVM_MASK_BYTES);
-    /* 3. The occurring events in input order, public then private. */
-    for (pass = 0, cursor_start(&inputs, mask_and(occurring, public_mask)); pass < 2u;
-         pass++, cursor_start(&inputs, mask_and_not(occurring, public_mask))) {
-        for (; cursor_any(&inputs); cursor_skip_byte(&inputs)) {
-            uint8_t todo = cursor_byte(&inputs), bit = 1, event = inputs.base;
-            for (; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
+    /* 3. The occurring events in input order, public (pass 0) then private (pass 1); then the
+     * selected event (pass 2). All fire from this one loop, so that -O3 inlines apply once on
+     * AVR: a second call for the control phase cost 330-390 B of the Kilobot core's flash
+     * (network_worker's 4,278 B, over 4 kB; docs/footprint.md, "Cost per step"). */
+    for (pass = 0, cursor_start(&fire, mask_and(occurring, public_mask));; pass++) {
+        for (; cursor_any(&fire); cursor_skip_byte(&fire)) {
+            uint8_t todo = cursor_byte(&fire), bit = 1;
+            for (event = fire.base; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
                 if (todo & 1u) {
-                    apply(vm, event, (uint8_t)(inputs.base >> 3), bit, m);
+                    /* Byte 0 spelled out for 1-byte masks: the compiler then drops apply's
+                     * byte arithmetic (measured: 3-5 % of an AVR step on those models). */
+                    apply(vm, event, m == 1u ? 0u : (uint8_t)(fire.base >> 3), bit, m);
                     fired++;
                 }
             }
         }
-    }
-    /* 4. Control phase (with if-quiet, none after an input); 5-6: enabled set, selection. */
-    if (!(mask_any(occurring) && (options & SVM_CONTROL_IF_QUIET))) {
-        mask_t enabled = enabled_set(vm, controllable, m);
-        uint8_t event;
-        if ((count = mask_count(enabled)) != 0u && (event = select_event(vm, enabled, count)) != 0xFFu) {
-            apply(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), m);
-            fired++;
+        if (pass == 0u) {
+            cursor_start(&fire, mask_and_not(occurring, public_mask));
+            continue;
         }
+        /* 4. Control phase (with if-quiet, none after an input); 5-6: enabled set, selection. */
+        if (pass == 1u && !(mask_any(occurring) && (options & SVM_CONTROL_IF_QUIET))) {
+            mask_t enabled = enabled_set(vm, controllable, m);
+            if ((count = mask_count(enabled)) != 0u && (event = select_event(vm, enabled, count)) != 0xFFu) {
+                cursor_single(&fire, event);
+                continue;
+            }
+        }
+        return fired;
     }
-    return fired;
 }
 
 uint8_t svm_step(svm_vm_t *vm)
