@@ -217,12 +217,16 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
     inputs moved without a check when none can violate (``total``), and, for an image of one
     supervisor (``sole``), its state read as one integer and the enabled events of each of
     its states in a list (VM._sole_entry). One frame per step, the plan's parts its locals: on
-    the smallest models the step is mostly that fixed cost. A callback that rebinds or loads
-    makes a new plan; after the inputs, a step whose plan is gone chooses out of line
-    (VM._choose), from the VM as it then is."""
-    body = ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
+    the smallest models the step is mostly that fixed cost. A step whose plan is gone when it
+    is called (a caller kept ``vm.step`` across a bind) hands over to the VM's current one; a
+    callback that rebinds or loads makes a new plan, and after the inputs a step whose plan is
+    gone chooses out of line (VM._choose), from the VM as it then is."""
+    body = ["if vm._plan is not plan:      # bound again since: a caller kept this step (vm.step)",
+            "    vm._bound()",
+            "    return vm.step()"]
+    body += ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
     body += _poll_lines(events, True)
-    body += ["a = acts if vm._plan is plan else vm._bound()[0]"]
+    body += ["a = acts"]
     if edge:
         body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
                  "fired = [event for event in fired if not previous >> event & 1]",

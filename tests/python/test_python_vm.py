@@ -232,3 +232,15 @@ def test_an_action_that_loads_an_image_finishes_the_step_on_the_new_image(vm, tm
     machine.bind("tick", check=lambda _d: not loaded, action=lambda _d: loaded.append(machine.load(gated)))
     assert machine.step() == [2] and machine.states == [0, 0]
     assert machine.step() == [] and machine.states == [0, 0]
+
+
+def test_a_step_kept_across_a_bind_polls_the_new_checks(vm, tmp_path):
+    """``step = vm.step`` kept by a caller, then a check bound again: the kept step hands over
+    to the step written out for the new bindings, never polling the old check."""
+    machine = vm.VM(image_of(tmp_path, LOOP), control="if-quiet")
+    machine.bind("tick", check=lambda _d: False)
+    machine.step()
+    step = machine.step
+    machine.bind("tick", check=lambda _d: True)
+    assert step() == [2]
+    assert step() == [2] and machine.step() == [2]
