@@ -14,6 +14,7 @@ from .equiv import compare, format_difference
 from .errors import InputError, read_input
 from .export import export_files
 from .model import Model
+from .naming import file_stem
 from .pipeline import Compiled, compile_inputs, compile_spec, load
 from .properties import format_report
 from .render import write_outputs
@@ -216,7 +217,7 @@ def export(inputs: Sequence[str], fmt: str, output: str, name: str | None = None
            product_limit: int = 200) -> tuple[Compiled, list[str]]:
     """Write a supervisor set as Nadzoru 2 YAML, libFAUDES .gen or Graphviz pictures."""
     compiled = compile_model(inputs, name=name)
-    return compiled, write_export(compiled.model, compiled.name, fmt, output, product_limit)
+    return compiled, write_export(compiled.model, file_stem(compiled.stem, compiled.source), fmt, output, product_limit)
 
 
 def synthesise_models(models: Sequence[str], script_path: str | None, statements: Sequence[str],
@@ -226,4 +227,4 @@ def synthesise_models(models: Sequence[str], script_path: str | None, statements
     script = read_synth_script(script_path, statements)
     spec = synthesise(script, models_by_name(list(models)), exports, minimise)
     compiled = compile_spec(spec, [output])       # files named after the output
-    return write_export(compiled.model, compiled.name, fmt, output, 0)
+    return write_export(compiled.model, file_stem(compiled.stem, output, "--output"), fmt, output, 0)

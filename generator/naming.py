@@ -50,17 +50,24 @@ _RUNTIME_PREFIXES = ("svm", "swarmvm", "kilo")
 _CASE_SENSITIVE_PREFIXES = ("SCT",)
 
 
-def model_identifier(stem: str, source: str) -> str:
-    """The model name as used in generated identifiers and file names: ``stem`` with every
-    character outside [A-Za-z0-9_] made ``_`` and ``m_`` before a leading digit. InputError when
-    the result is longer than MAX_MODEL_NAME, a keyword of C, C++ or Python or starts like the
-    runtimes' own symbols."""
+def file_stem(stem: str, source: str, key: str = "--name") -> str:
+    """``stem`` as the model's name in file names: every character outside [A-Za-z0-9_] made
+    ``_``, ``m_`` before a leading digit. InputError (naming ``key``, the option that gave it)
+    when the result is longer than MAX_MODEL_NAME, so that every file named after it fits 255
+    bytes. What `export` and `synth` name their files by: files, not code, so any word will do."""
     name = re.sub(r"[^A-Za-z0-9_]", "_", stem)
     name = "m_" + name if name[:1].isdigit() else name
-    lowered = name.lower()
     if len(name) > MAX_MODEL_NAME:
-        raise InputError(source, "--name", "model name of %d characters: at most %d, so that the generated file names "
-                         "fit 255 bytes: give a shorter one with --name" % (len(name), MAX_MODEL_NAME))
+        raise InputError(source, key, "model name of %d characters: at most %d, so that the generated file names "
+                         "fit 255 bytes: give a shorter one with %s" % (len(name), MAX_MODEL_NAME, key))
+    return name
+
+
+def model_identifier(stem: str, source: str) -> str:
+    """The model name as used in generated identifiers and file names: :func:`file_stem`, and
+    InputError when it is a keyword of C, C++ or Python or starts like the runtimes' own symbols."""
+    name = file_stem(stem, source)
+    lowered = name.lower()
     if not name or name in _C_CPP_KEYWORDS or keyword.iskeyword(name):
         raise InputError(source, "--name", "model name %r is reserved in C, C++ or Python: give another with --name" % name)
     if any(lowered == p or lowered.startswith(p + "_") for p in _RUNTIME_PREFIXES) or \

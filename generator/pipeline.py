@@ -1,5 +1,6 @@
 """The compiler pipeline in one call: load -> validate -> canonicalise -> tables -> image."""
 
+import functools
 import os
 import re
 from dataclasses import dataclass
@@ -16,7 +17,8 @@ from .tables import Tables, build_tables
 
 @dataclass(frozen=True)
 class Compiled:
-    name: str          # identifier-safe model name, used for generated file names
+    stem: str          # the name asked for (--name), else the first input's file stem
+    source: str        # the first input, which an error about the name names
     model: Model
     tables: Tables
     image: bytes
@@ -24,6 +26,14 @@ class Compiled:
     # and state numbers, for the Python compatibility API's exact mode: docs/compat.md), else
     # the image itself. `swarmvm pack` and the Python targets ship it; the VMs do not need it.
     ordered_image: bytes = b""
+
+    @functools.cached_property
+    def name(self) -> str:
+        """The identifier-safe model name (naming.model_identifier) of generated identifiers and
+        file names; InputError (key --name) for a reserved or overlong one. Checked where code
+        or files are named after the model, not when compiling: check, pack, script and equiv
+        name nothing after it, so a supervisor in a file called new.yaml is fine there."""
+        return model_identifier(self.stem, self.source)
 
 
 def expand_directories(paths):
@@ -54,12 +64,6 @@ def load(paths):
     return load_automata(paths) if automata else load_supervisor(paths[0])
 
 
-def model_name(paths, name=None):
-    """The model's name: ``name`` if given, else the first input's file stem, as an identifier
-    (naming.model_identifier)."""
-    return model_identifier(name or os.path.splitext(os.path.basename(paths[0]))[0], paths[0])
-
-
 def compile_inputs(paths, name=None, names=True):
     """Run the whole pipeline; raises InputError on bad input."""
     return compile_spec(load(paths), paths, name, names)
@@ -76,4 +80,5 @@ def compile_spec(spec, paths, name=None, names=True):
         ordered = pack(tables, spec.source, names=True, order=(
             [spec.events.index(event) for event in model.events],
             [number for sup in model.supervisors for number in sup.input_states]))
-    return Compiled(model_name(paths, name), model, tables, image, ordered)
+    stem = name or os.path.splitext(os.path.basename(paths[0]))[0]
+    return Compiled(stem, paths[0], model, tables, image, ordered)

@@ -99,6 +99,7 @@ TARGETS = {
 def generate(compiled, target, **options):
     """{output name: (bytes, keep)} for one target: rendered templates, runtime copies, image."""
     spec = TARGETS[target]
+    name = compiled.name        # refused (InputError) for every target alike, before any target's own checks
     if spec.keeps_order:
         compiled = dataclasses.replace(compiled, image=compiled.ordered_image)
     try:
@@ -109,11 +110,11 @@ def generate(compiled, target, **options):
     templates, copies = spec.templates, spec.copies
     if options.get("learned_checks"):
         templates, copies = templates + spec.learned_templates, copies + spec.learned_copies
-    files = {"%s.svm" % compiled.name: (compiled.image, False)}
+    files = {"%s.svm" % name: (compiled.image, False)}
     for template, output, keep in templates:
-        files[output.format(name=compiled.name)] = (render(template, values), keep)
+        files[output.format(name=name)] = (render(template, values), keep)
     for source, output in copies:
-        files[output.format(name=compiled.name)] = (copy_banner(output) + source.read_bytes(), False)
+        files[output.format(name=name)] = (copy_banner(output) + source.read_bytes(), False)
     return files
 
 

@@ -103,3 +103,25 @@ def test_gen_refuses_a_reserved_model_name_before_writing(target, stem, name, tm
     assert result.returncode == 2 and not (tmp_path / "out").exists()
     assert result.stderr.count("\n") == 1 and result.stderr.startswith("swarmvm: error: %s: --name: model name %r"
                                                                        % (model, name or stem))
+
+
+@pytest.mark.parametrize("stem", ["new", "svm", "kilo_main"])
+def test_verbs_that_generate_no_code_take_any_model_name(stem, tmp_path):
+    """Only gen names code after the model: check, pack, script, equiv, export and synth (which
+    names its files after --output and has no --name) take a supervisor or an output called
+    new.yaml or svm.yaml like any other, and gen refuses the name, saying to give another."""
+    from checkout import EXAMPLE, ROOT
+    model = tmp_path / (stem + ".yaml")
+    model.write_text(EXAMPLE.read_text())
+    synthesis = ROOT / "tests" / "corpus" / "synthesis" / "energy_worker"
+    for verb in (["check", model], ["pack", model, "-o", tmp_path / "m.svm"], ["script", model, "--steps", "3"],
+                 ["equiv", model, EXAMPLE], ["export", model, "-f", "dot", "-o", tmp_path / "dot"],
+                 ["synth", "--script", synthesis / "script.txt", *sorted(synthesis.glob("[GE]?.xml")),
+                  "-o", tmp_path / "synth" / model.name]):
+        result = subprocess.run(["swarmvm", *map(str, verb)], capture_output=True, text=True)
+        assert result.returncode == 0 and result.stderr == "", (verb, result.stderr)
+    assert (tmp_path / "m.svm").read_bytes()[:4] == b"SVMI"
+    assert (tmp_path / "dot" / (stem + "_product.dot")).is_file() and (tmp_path / "synth" / model.name).is_file()
+    refused = subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(tmp_path / "out")],
+                             capture_output=True, text=True)
+    assert refused.returncode == 2 and "give another with --name" in refused.stderr
