@@ -253,7 +253,9 @@ void svm_init(svm_vm_t *vm);
 
 /* Validate `image` (`length` bytes, in RAM) and run it from its initial states. On a running
  * VM this is the swap: it happens between two steps, implies a reset, and rebinds runtime
- * bindings by event name when both images carry names. On error nothing changes. */
+ * bindings by event name when both images carry names. On error nothing changes. Never from a
+ * callback while svm_step runs (the step keeps the old image's layout): record the request and
+ * load after svm_step returns (docs/semantics.md, "Reset and swap"). */
 int svm_load(svm_vm_t *vm, const uint8_t *image, uint16_t length);
 
 /* The same for an image in program memory (PROGMEM on AVR; identical to svm_load elsewhere). */

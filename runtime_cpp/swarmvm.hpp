@@ -613,9 +613,13 @@ public:
 
     // Swaps in a new image between two steps; states restart from its initial states.
     // Callbacks bound by name are rebound by name; a name the new image lacks throws
-    // UnknownEvent before anything changes, so the VM keeps running the logic it had.
+    // UnknownEvent before anything changes, so the VM keeps running the logic it had. An
+    // action may load an image during a step, which then ends after that action (nothing else
+    // fires in it: docs/semantics.md, "Reset and swap"); a check or the violation hook may not
+    // (std::logic_error).
     void load(Image image) {
         refuse_while_polling("load an image");
+        if (in_violation_hook_) throw std::logic_error("the violation hook cannot load an image: load it after step() returns");
         std::vector<Action> actions(image.num_events);
         std::vector<Check> checks(image.num_events);
         std::vector<CheckCall> check_calls(image.num_events);
@@ -635,12 +639,14 @@ public:
         Derived derived = derive(image, options_);
         image_ = std::move(image);
         derived_ = std::move(derived);
+        if (running_actions_ != 0) retired_actions_.push_back(std::move(actions_));   // one of them is running (act)
         actions_ = std::move(actions);
         checks_ = std::move(checks);
         check_calls_ = std::move(check_calls);
         data_ = std::move(data);
         fired_.reserve(image_.num_events);
         rebuild_polls();
+        ++loads_;
         reset();
     }
 
@@ -1212,16 +1218,21 @@ private:
 
     // Steps 3 to 6 supervisor by supervisor, then the composed state of the outcome (if any).
     // Out of line: rare where composed states exist. composed_ is cleared first, so that an
-    // action that throws leaves the next step to find it again.
+    // action that throws leaves the next step to find it again. An input's action that loads
+    // an image ends the step there: the other inputs are the old image's events, and load()
+    // has reset the VM (and found its composed state).
     template <class M>
     SWARMVM_NOINLINE const std::vector<unsigned>& step_general(const Sets<M>& sets, const M& occurred) {
         composed_ = kNoComposed;
-        const auto fire_input = [this](unsigned e) {
+        const unsigned loads = loads_;
+        const auto fire_input = [this, loads](unsigned e) {
+            if (loads_ != loads) return;
             fired_.push_back(e);
             apply(e);
         };
         (occurred & sets.public_inputs).for_each(fire_input);     // input order: public first
         (occurred & sets.private_inputs).for_each(fire_input);
+        if (loads_ != loads) return fired_;
         if (fired_.empty() || options_.control != Control::if_quiet) {
             const M mask = enabled_in(sets);
             if (mask.any()) {
@@ -1317,17 +1328,36 @@ private:
         transit(event, [this, event](unsigned s) { return ranked_successor(s, event); });
     }
 
+    // The hook may not load an image (load() refuses): transit() is still walking the
+    // event's supervisors in the tables a load would free.
     void violated(unsigned event, unsigned s) {
         if (violations_ != kMaxViolations) ++violations_;
-        if (on_violation_) on_violation_(event, s);
+        if (!on_violation_) return;
+        in_violation_hook_ = true;
+        try {
+            on_violation_(event, s);
+        } catch (...) {
+            in_violation_hook_ = false;
+            throw;
+        }
+        in_violation_hook_ = false;
     }
 
+    // An action that loads an image replaces actions_ while one of its elements runs: load()
+    // keeps the replaced vectors in retired_actions_ until the outermost action returns.
     SWARMVM_NOINLINE void act(unsigned event) {
+        ++running_actions_;
         try {
             actions_[event](data_[event]);
         } catch (...) {
+            done_acting();
             callback_threw(event, "action");
         }
+        done_acting();
+    }
+
+    void done_acting() {
+        if (--running_actions_ == 0) retired_actions_.clear();
     }
 
     // Called in a catch block: the exception in flight nested in a CallbackError naming it.
@@ -1399,6 +1429,10 @@ private:
     std::vector<CheckCall> check_calls_;   // per event, beside checks_
     Polls polls_;
     bool polling_ = false;            // inside step_with's poll loop (refuse_while_polling)
+    bool in_violation_hook_ = false;  // inside on_violation_ (violated)
+    unsigned loads_ = 0;              // images loaded: step_general ends the step when it changes
+    unsigned running_actions_ = 0;    // actions running (act)
+    std::vector<std::vector<Action>> retired_actions_;   // replaced by a load while one runs (act)
     std::vector<void*> data_;
     ViolationHook on_violation_;
     std::vector<std::uint16_t> states_;

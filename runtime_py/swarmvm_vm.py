@@ -131,11 +131,14 @@ _COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or ste
 MAX_COMPILED = 64
 
 
-def _move_lines(sole, total):
+def _move_lines(sole, total, cut):
     """Source lines that fire the inputs in ``fired``: each supervisor that has the event moves
     (``total``: no input can violate, so no check for a missing move), then its action runs.
     ``sole``: the image has one supervisor, whose state is ``states[0]`` and whose column of
-    each event is ``columns[event]`` (None outside its alphabet)."""
+    each event is ``columns[event]`` (None outside its alphabet). An action that loads an image
+    (``vm._loads`` is no longer the plan's ``loads``) ends the step with the lines ``cut``: what
+    fired up to its event stands, nothing else fires (docs/semantics.md, "Reset and swap")."""
+    cut = ["if vm._loads != loads:"] + ["    " + line for line in cut]
     if sole:
         body = ["    for event in fired:",
                 "        column = columns[event]",
@@ -156,7 +159,7 @@ def _move_lines(sole, total):
                  indent + "else:",
                  indent + "    states[%s] = target" % sup]
     return body + ["        if a[event] is not None:",
-                   "            vm._act(event, a[event])",
+                   "            vm._act(event, a[event])"] + ["            " + line for line in cut] + [
                    "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
 
 
@@ -219,8 +222,9 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
     its states in a list (VM._sole_entry). One frame per step, the plan's parts its locals: on
     the smallest models the step is mostly that fixed cost. A step whose plan is gone when it
     is called (a caller kept ``vm.step`` across a bind) hands over to the VM's current one; a
-    callback that rebinds or loads makes a new plan, and after the inputs a step whose plan is
-    gone chooses out of line (VM._choose), from the VM as it then is."""
+    callback that rebinds makes a new plan, and after the inputs a step whose plan is gone
+    chooses out of line (VM._choose), from the VM as it then is; a callback that loads an image
+    ends the step (_move_lines)."""
     body = ["if vm._plan is not plan:      # bound again since: a caller kept this step (vm.step)",
             "    vm._bound()",
             "    return vm.step()"]
@@ -231,7 +235,7 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
         body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
                  "fired = [event for event in fired if not previous >> event & 1]",
                  "vm.previous = current"]
-    body += ["states = vm.states", "if fired:"] + _move_lines(sole, total)
+    body += ["states = vm.states", "if fired:"] + _move_lines(sole, total, ["return fired[:fired.index(event) + 1]"])
     if quiet or not chooses:
         body += ["    return fired"]
     else:
@@ -242,7 +246,7 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
     body += ["return fired"]
     key = ("step", events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups)
     return _compiled(key, ["def make(plan, acts, checks, datas, successors, columns, table, controllable, gates, sets,"
-                           " event_name, CallbackError):"]
+                           " event_name, CallbackError, loads):"]
                      + _gate_lines(gate_sups) + ["    def step(vm%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return step"])
 
@@ -257,15 +261,18 @@ def _exact_stepper(events, public_first, chooses, total, gate_sups):
     randint's three Python-level calls, a third of a small model's step, while ``randint`` is
     the standard one (tests/python/test_sct_exact.py compares the random state step by step).
     The enabled events in file order are remembered per enabled mask (SCT._file_order). A
-    callback that rebinds or loads while the inputs fire: the choice is made out of line
-    (SCT._choose)."""
+    callback that rebinds while the inputs fire: the choice is made out of line (SCT._choose);
+    one that loads an image ends the step (_move_lines)."""
     body = ["vm = sct.vm",
             "if vm._plan is not vm_plan:",
             "    sct._plan_exact()",
             "    return sct.run_step()"] + _poll_lines(events, False)
     body += ["a = acts", "states = vm.states", "if fired:"]
     body += ["    fired.sort(key=private.__getitem__)"] if public_first else []
-    body += _move_lines(False, total)
+    body += _move_lines(False, total, ["inputs = sct.input_buffer = list(map(file_index.__getitem__, "
+                                       "fired[:fired.index(event) + 1]))",
+                                       "sct.last_events = inputs[:]",
+                                       "return"])
     body += ["    inputs = list(map(file_index.__getitem__, fired))",
              "    sct.input_buffer = inputs",
              "    if vm._plan is not vm_plan:",
@@ -294,7 +301,7 @@ def _exact_stepper(events, public_first, chooses, total, gate_sups):
     body += ["sct.last_events = inputs[:]"]
     return _compiled(("exact", events, public_first, chooses, total, gate_sups),
                      ["def make(vm_plan, acts, checks, datas, successors, controllable, gates, file_index, private, "
-                      "orders, rnd, randint, getrandbits):"]
+                      "orders, rnd, randint, getrandbits, loads):"]
                      + _gate_lines(gate_sups) + ["    def run_step(sct%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return run_step"])
 
@@ -340,6 +347,8 @@ class VM:
         self.seed, self.learner, self.on_violation = seed, learner, on_violation
         self._priority = priority
         self.actions, self.checks, self.data = {}, {}, {}
+        self._loads = 0     # images loaded since: a step that sees it change ends (_move_lines, _fire)
+        self._in_hook = False   # on_violation is running: it may not load (_violate)
         self._install(image if isinstance(image, Image) else Image.parse(image))
         self.reset()
 
@@ -415,11 +424,17 @@ class VM:
 
     def load(self, image):
         """Swap in a new table image between two steps; states restart from its initial states.
+        An action may load one during a step, which then ends after that action: nothing else
+        fires in it (the inputs were polled, and the choice would be made, for the old image).
+        A check may not (C++ refuses it; here the step would go on with the old image's tables),
+        nor ``on_violation`` (RuntimeError).
 
         Callbacks bound by name are rebound by name; a name the new image lacks raises
         ``KeyError`` before anything changes, so the VM keeps running the logic it had. Returns
         the new image's uncontrollable events left without a check (reported before the image
         is activated; in strict mode the image is refused with :class:`UnboundEvents`)."""
+        if self._in_hook:
+            raise RuntimeError("on_violation cannot load an image: load it after step() returns")
         new = image if isinstance(image, Image) else Image.parse(image)
         old_names = {e: self.image.event_name(e) for e in set(self.actions) | set(self.checks)}
         if old_names and new.names is None and self.image.names is not None:
@@ -433,6 +448,7 @@ class VM:
         self.actions = {mapping.get(e, e): f for e, f in self.actions.items()}
         self.checks = checks
         self.data = {mapping.get(e, e): d for e, d in self.data.items()}
+        self._loads += 1
         self._install(new)
         self.reset()
         return missing
@@ -515,8 +531,8 @@ class VM:
 
     def _choose(self, fired):
         """The rest of a step whose plan a callback replaced while the inputs fired (a rebind or
-        a load): one enabled controllable event chosen and fired as the written-out step does,
-        out of line, from the VM as it now is; returns ``fired`` with it."""
+        a change of option): one enabled controllable event chosen and fired as the written-out
+        step does, out of line, from the VM as it now is; returns ``fired`` with it."""
         enabled = self.enabled()
         if enabled:
             choice = self.select(enabled)
@@ -543,7 +559,7 @@ class VM:
                             tuple(sup for sup, _ in self._gates))
             step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors, columns,
                         self._sole, self.image.controllable, self._gates, self._enabled_sets, self.image.event_name,
-                        CallbackError)
+                        CallbackError, self._loads)
             self.__dict__["step"] = types.MethodType(step, self)
         return plan
 
@@ -561,8 +577,9 @@ class VM:
     def _fire(self, events, acts):
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
         counts a violation), then its action from ``acts`` (the bound plan's) runs. A callback
-        may rebind or set ``states``: what it changed holds for the events after it."""
-        states, successors = self.states, self.successors
+        may rebind or set ``states``: what it changed holds for the events after it; an action
+        that loads an image ends the firing there (as _move_lines)."""
+        states, successors, loads = self.states, self.successors, self._loads
         for event in events:
             for sup, successor in successors[event]:
                 target = successor[states[sup]]
@@ -574,15 +591,22 @@ class VM:
             act = acts[event]
             if act is not None:
                 self._act(event, act)
+                if self._loads != loads:
+                    return
                 states, acts = self.states, self._bound()[0]
 
     def _violate(self, event, sup):
         """Supervisor ``sup`` has no move on ``event``: count a violation (the counter stops at
-        MAX_VIOLATIONS) and tell ``on_violation``, which may rebind or set ``states``."""
+        MAX_VIOLATIONS) and tell ``on_violation``, which may rebind or set ``states`` but not
+        load an image (``load`` refuses: the other supervisors of the event are still to move)."""
         if self.violations != MAX_VIOLATIONS:
             self.violations += 1
         if self.on_violation is not None:
-            self.on_violation(event, sup)
+            self._in_hook = True
+            try:
+                self.on_violation(event, sup)
+            finally:
+                self._in_hook = False
 
     def _act(self, event, act):
         """Run an event's bound (action, data); CallbackError if the action raises."""
@@ -745,7 +769,7 @@ class SCT:
                               vm._total is not None, gate_sups)
         step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], vm.successors,
                     vm.image.controllable, vm._gates, self._file_index, self._private, self._orders, random,
-                    _RANDINT, random.getrandbits)
+                    _RANDINT, random.getrandbits, vm._loads)
         self.__dict__["run_step"] = types.MethodType(step, self)
 
     def _file_order(self, mask):
@@ -756,7 +780,7 @@ class SCT:
 
     def _choose(self, inputs):
         """The published choice of a step whose VM plan a callback replaced while the inputs
-        fired (a rebind or a load), out of line, from the VM as it now is: ``randint`` itself
+        fired (a rebind or a change of option), out of line, from the VM as it now is: ``randint`` itself
         draws (the written-out step makes the same number without calling it)."""
         vm = self.vm
         order = sorted((self._file_index[e], e) for e in vm.enabled())

@@ -104,3 +104,13 @@ def one_supervisor_yaml(events, controllable, state_transitions):
     private: ``state_transitions`` its self-loops' event names."""
     return supervisor_yaml(events, controllable, [set(events)], [[[(e, 0) for e in state_transitions]]],
                            public=[0] * len(events))
+
+
+# An image swapped in by an action while another input fires (docs/semantics.md, "Reset and
+# swap"): in FIRST (events c, d controllable; x, y not) x and y are both defined in state 0;
+# SECOND has fewer events (b controllable; x, y), so FIRST's index of y (3) is none of
+# SECOND's, and in its initial state b is enabled and y has no move.
+SWAP_FIRST = supervisor_yaml(["c", "d", "x", "y"], [1, 1, 0, 0], [{"c", "d", "x", "y"}],
+                             [[[("c", 1), ("d", 0), ("x", 1), ("y", 0)], [("c", 0), ("x", 0), ("y", 1)]]])
+SWAP_SECOND = supervisor_yaml(["b", "x", "y"], [1, 0, 0], [{"b", "x", "y"}],
+                              [[[("b", 1), ("x", 0)], [("b", 0), ("x", 1), ("y", 0)]]])

@@ -4,6 +4,7 @@ from pathlib import Path
 
 import pytest
 
+from conformance.cases import SWAP_FIRST, SWAP_SECOND
 from swarmvm.pipeline import compile_inputs
 
 CORPUS = Path(__file__).parent.parent / "corpus"
@@ -223,15 +224,49 @@ def test_an_action_that_rebinds_during_the_inputs_leaves_the_run_unchanged(vm, t
     assert any(2 in fired for fired, _, _ in runs[id(plain)])     # tick fired: the action ran
 
 
-def test_an_action_that_loads_an_image_finishes_the_step_on_the_new_image(vm, tmp_path):
-    """tick's action swaps the one-supervisor LOOP for LOOP_AND_GATE: the step chooses from the
-    new image's initial states, where the gate disables go, not from LOOP's tables."""
-    machine = vm.VM(image_of(tmp_path, LOOP))
-    gated = image_of(tmp_path, LOOP_AND_GATE, "gated.yaml")
+def swap_images(tmp_path):
+    """The images of conformance.cases' SWAP_FIRST and SWAP_SECOND."""
+    return image_of(tmp_path, SWAP_FIRST, "first.yaml"), image_of(tmp_path, SWAP_SECOND, "second.yaml")
+
+
+def test_an_action_that_loads_an_image_ends_the_step(vm, tmp_path):
+    """x's action loads the second image while y fires too: the step ends after x (y was
+    polled for the first image, whose index 3 the second does not have; no choice follows), and
+    from then on the VM runs as a new VM of the second image (states, generator, violations)."""
+    first, second = swap_images(tmp_path)
+    machine, fresh = vm.VM(first, seed=7), vm.VM(second, seed=7)
     loaded: list = []
-    machine.bind("tick", check=lambda _d: not loaded, action=lambda _d: loaded.append(machine.load(gated)))
-    assert machine.step() == [2] and machine.states == [0, 0]
-    assert machine.step() == [] and machine.states == [0, 0]
+    machine.bind("x", check=lambda _d: True, action=lambda _d: loaded or loaded.append(machine.load(second)))
+    fresh.bind("x", check=lambda _d: True)
+    for m in (machine, fresh):
+        m.bind("y", check=lambda _d: True)
+    assert machine.step() == [2] and machine.states == [0] and machine.violations == 0
+    runs = [[(m.step(), list(m.states), m.violations) for _ in range(10)] for m in (machine, fresh)]
+    assert runs[0] == runs[1] and runs[0][0] == ([1, 2, 0], [1], 1)
+
+
+def test_an_action_that_loads_an_image_ends_the_sct_exact_step(vm, tmp_path):
+    """The same in SCT exact mode: the step's events are x's alone, in the file's numbering."""
+    first, second = swap_images(tmp_path)
+    path = tmp_path / "first.svm"
+    path.write_bytes(compile_inputs([str(tmp_path / "first.yaml")]).ordered_image)
+    sct = vm.SCT(str(path))
+    sct.add_callback(sct.EV["EV_x"], lambda _d: sct.vm.load(second), lambda _d: True, None)
+    sct.add_callback(sct.EV["EV_y"], None, lambda _d: True, None)
+    sct.run_step()
+    assert sct.last_events == sct.input_buffer == [sct.EV["EV_x"]] and sct.vm.image.num_events == 3
+
+
+def test_the_violation_hook_may_not_load_an_image(vm, tmp_path):
+    """on_violation runs while the event's other supervisors are still to move: a load there is
+    refused (as in C++), and the VM keeps its image; between steps the load is taken."""
+    first, second = swap_images(tmp_path)
+    machine = vm.VM(second, on_violation=lambda _event, _sup: machine.load(first))
+    machine.bind("y", check=lambda _d: True)       # no move in the initial state
+    with pytest.raises(RuntimeError, match="on_violation cannot load an image"):
+        machine.step()
+    assert machine.image.num_events == 3
+    assert machine.load(first) == ["EV_x"] and machine.image.num_events == 4      # x has no check
 
 
 def test_a_step_kept_across_a_bind_polls_the_new_checks(vm, tmp_path):
