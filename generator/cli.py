@@ -76,7 +76,7 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
     """Write the portable table image of a supervisor (docs/image-format.md)."""
     compiled = api.write_image(inputs, output, names=not no_names)
     _warn(compiled.model.warnings)
-    click.echo("%s: %d bytes" % (output, len(compiled.image)))
+    click.echo("%s: %d bytes" % (output, len(compiled.ordered_image)))     # what write_image wrote
 
 
 @main.command()

@@ -69,7 +69,7 @@ def test_damaged_images_are_refused(vm, damage, message):
 def test_pack_and_check_an_image(tmp_path):
     out = tmp_path / "logic.svm"
     result = CliRunner().invoke(main, ["pack", str(CORPUS / "openswarm" / "energy_worker.yaml"), "-o", str(out)])
-    assert result.exit_code == 0 and out.exists()
+    assert result.exit_code == 0 and result.stdout == "%s: %d bytes\n" % (out, out.stat().st_size)
     result = CliRunner().invoke(main, ["check", str(out)])
     assert result.exit_code == 0
     assert "| logic.svm | 10 | 4 | 32 | 124 | %d |" % out.stat().st_size in result.stdout
