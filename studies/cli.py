@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
+import math
 import sys
 
 import click
@@ -47,6 +48,35 @@ def params_options(exclude=()):
                                        help=HELP[field.name])(command)
         return command
     return decorate
+
+
+class FiniteFloat(click.FloatRange):
+    """A float option that must be a number, in the range if one is given. click's ranges let
+    nan through (no comparison with it is true), and inf where the range has no top: the
+    studies divide by their parameters and run until a time is reached, so a trial would fail
+    with a traceback or never end. Refused here with click's own error, exit status 2."""
+
+    name = "float"
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail("%s is not a finite number." % value, param, ctx)
+        return number
+
+
+class FloatList(click.ParamType):
+    """Comma-separated numbers of ``item``'s range ('' for none): a sweep's grid along one parameter."""
+
+    name = "numbers"
+
+    def __init__(self, item: FiniteFloat) -> None:
+        self.item = item
+
+    def convert(self, value, param, ctx):
+        if not isinstance(value, str):
+            return value
+        return [self.item.convert(text.strip(), param, ctx) for text in value.split(",") if text.strip()]
 
 
 def make_params(values: dict) -> Params:
@@ -107,17 +137,14 @@ def sim_uav(mode, as_json, **values):
     click.echo("%-20s %.2f s (CPU %.2f s)" % ("time", summary["seconds"], summary["cpu_seconds"]))
 
 
-def _floats(text: str):
-    return [float(v) for v in text.split(",") if v.strip()]
-
-
 @sweep.command("uav")
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
 @click.option("--rules", default="least-confident,most-confident,random", show_default=True,
               help="Learning rules (comma-separated); '' for none.")
-@click.option("--thresholds", default="0.5,0.6,0.7,0.8,0.9,1.0", show_default=True,
+@click.option("--thresholds", default="0.5,0.6,0.7,0.8,0.9,1.0", show_default=True, type=FloatList(FiniteFloat(0, 1)),
               help="Threshold-rule runs at these thresholds; '' for none.")
-@click.option("--taus", default="5,10,15,20,25,30", show_default=True, help="Inter-arrival means (minutes).")
+@click.option("--taus", default="5,10,15,20,25,30", show_default=True, type=FloatList(FiniteFloat(min=0, min_open=True)),
+              help="Inter-arrival means (minutes).")
 @click.option("--runs", default=20, show_default=True, type=click.IntRange(1), help="Runs per configuration.")
 @click.option("--first-seed", default=1, show_default=True, type=int, help="Runs use seeds first..first+runs-1.")
 @click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local processes.")
@@ -133,8 +160,7 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
     if bad:
         click.echo("swarmvm: error: --rules: unknown rule %r (one of %s)" % (bad[0], ", ".join(grid_sweep.LEARNING_RULES)), err=True)
         sys.exit(2)
-    base = make_params(values)
-    specs = grid_sweep.grid(base, rule_list, _floats(thresholds), _floats(taus), range(first_seed, first_seed + runs))
+    specs = grid_sweep.grid(make_params(values), rule_list, thresholds, taus, range(first_seed, first_seed + runs))
     ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     click.echo("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
@@ -142,7 +168,8 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
 @plot.command("uav")
 @click.argument("results", type=click.Path(exists=True, file_okay=False))
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
-@click.option("--tau", default=20.0, show_default=True, help="Inter-arrival mean of Figures 17, 18 and 20.")
+@click.option("--tau", default=20.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
+              help="Inter-arrival mean of Figures 17, 18 and 20.")
 def plot_uav(results, out, tau):
     """Drone delivery: the seed's Figures 16-20 (and a summary table) from sweep results."""
     need_studies_extra()
@@ -164,25 +191,25 @@ def bounds():
 @click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
               help="Fixed chargers (equations 1-3) or one mobile charger per worker.")
 @click.option("--workers", default=6, show_default=True, type=click.IntRange(1), help="n_w.")
-@click.option("--capacity", default=100.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+@click.option("--capacity", default=100.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="Worker capacity c_w,max.")
-@click.option("--charge-rate", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+@click.option("--charge-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="Charging rate per second (workers and chargers).")
-@click.option("--move-rate", default=1.0, show_default=True, type=click.FloatRange(min=0), help="Moving, per second.")
-@click.option("--work-rate", default=1.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+@click.option("--move-rate", default=1.0, show_default=True, type=FiniteFloat(min=0), help="Moving, per second.")
+@click.option("--work-rate", default=1.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="Working, per second.")
-@click.option("--core-rate", default=0.05, show_default=True, type=click.FloatRange(min=0), help="Core, per second.")
-@click.option("--commute-m", default=1.0, show_default=True, type=click.FloatRange(min=0),
+@click.option("--core-rate", default=0.05, show_default=True, type=FiniteFloat(min=0), help="Core, per second.")
+@click.option("--commute-m", default=1.0, show_default=True, type=FiniteFloat(min=0),
               help="Distance between the charging (or transfer) and work regions.")
-@click.option("--speed", default=0.12, show_default=True, type=click.FloatRange(min=0, min_open=True), help="m/s.")
-@click.option("--duration", default=600.0, show_default=True, type=click.FloatRange(min=0), help="tau, seconds.")
-@click.option("--charger-capacity", default=200.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+@click.option("--speed", default=0.12, show_default=True, type=FiniteFloat(min=0, min_open=True), help="m/s.")
+@click.option("--duration", default=600.0, show_default=True, type=FiniteFloat(min=0), help="tau, seconds.")
+@click.option("--charger-capacity", default=200.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="Mobile charger capacity c_m,max.")
-@click.option("--transfer-rate", default=10.0, show_default=True, type=click.FloatRange(min=0, min_open=True),
+@click.option("--transfer-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="What a mobile charger gives per second.")
-@click.option("--transfer-loss", default=0.0, show_default=True, type=click.FloatRange(0, 1, max_open=True),
+@click.option("--transfer-loss", default=0.0, show_default=True, type=FiniteFloat(0, 1, max_open=True),
               help="Share of a transfer that is lost (1 - xi).")
-@click.option("--transfer-period", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--transfer-period", type=FiniteFloat(min=0, min_open=True), default=None,
               help="Mobile: analyse this transfer period (s) instead of finding the best.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate, core_rate, commute_m, speed,

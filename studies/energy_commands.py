@@ -8,21 +8,22 @@ import sys
 
 import click
 
-from .cli import need_studies_extra, plot, sim, sweep
+from .energy_replenishment.params import MAX_DURATION_S
+from .cli import FiniteFloat, need_studies_extra, plot, sim, sweep
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
 RATE_OPTIONS = (
-    ("--capacity", "capacity", click.FloatRange(min=0, min_open=True), "Worker capacity c_w,max."),
-    ("--charger-capacity", "charger_capacity", click.FloatRange(min=0, min_open=True), "Mobile charger capacity c_m,max."),
-    ("--charge-rate", "charge_rate", click.FloatRange(min=0, min_open=True),
+    ("--capacity", "capacity", FiniteFloat(min=0, min_open=True), "Worker capacity c_w,max."),
+    ("--charger-capacity", "charger_capacity", FiniteFloat(min=0, min_open=True), "Mobile charger capacity c_m,max."),
+    ("--charge-rate", "charge_rate", FiniteFloat(min=0, min_open=True),
      "Charging rate per second in the charging strip (and the transfer rate unless --transfer-rate)."),
-    ("--transfer-rate", "transfer_rate", click.FloatRange(min=0, min_open=True),
+    ("--transfer-rate", "transfer_rate", FiniteFloat(min=0, min_open=True),
      "What a mobile charger gives per second."),
-    ("--transfer-loss", "transfer_loss", click.FloatRange(0, 1, max_open=True), "Share of a transfer that is lost (1 - xi)."),
-    ("--move-rate", "move_rate", click.FloatRange(min=0), "Moving, per second."),
-    ("--work-rate", "work_rate", click.FloatRange(min=0), "Working, per second."),
-    ("--core-rate", "core_rate", click.FloatRange(min=0), "Core, per second."),
-    ("--duration", "duration_s", click.FloatRange(min=0, min_open=True), "Trial length, seconds."),
+    ("--transfer-loss", "transfer_loss", FiniteFloat(0, 1, max_open=True), "Share of a transfer that is lost (1 - xi)."),
+    ("--move-rate", "move_rate", FiniteFloat(min=0), "Moving, per second."),
+    ("--work-rate", "work_rate", FiniteFloat(min=0), "Working, per second."),
+    ("--core-rate", "core_rate", FiniteFloat(min=0), "Core, per second."),
+    ("--duration", "duration_s", FiniteFloat(min=0, min_open=True, max=MAX_DURATION_S), "Trial length, seconds."),
 )
 
 

@@ -50,7 +50,22 @@ class Params:
     def __post_init__(self) -> None:
         if self.rule not in RULES:
             raise ValueError("--rule: must be one of %s, got %r" % (", ".join(RULES), self.rule))
+        for field in dataclasses.fields(self):      # nan and inf pass every comparison below or loop for ever
+            value = getattr(self, field.name)
+            if isinstance(value, float) and not math.isfinite(value):
+                raise ValueError("--%s: must be a finite number, got %r" % (field.name.replace("_", "-"), value))
+        # The physics (equations 14 and 15) divides by rotors, disc area, capacity and speed.
+        positive = ("frame_kg", "battery_kg", "disc_m2", "speed_ms", "capacity_wh", "charger_w", "gravity",
+                    "air_density", "deliver_radius_m")
+        for name in positive:
+            if not getattr(self, name) > 0:
+                raise ValueError("--%s: must be positive" % name.replace("_", "-"))
         checks = [("drones", self.drones >= 1, "must be at least 1"),
+                  ("rotors", self.rotors >= 1, "must be at least 1"),
+                  ("charger-eff", 0 < self.charger_eff <= 1, "must lie in (0, 1]"),
+                  ("home-radius-m", self.home_radius_m >= 0, "must not be negative"),
+                  ("alpha", self.alpha >= 0, "must not be negative"),
+                  ("init-epochs", self.init_epochs >= 0, "must not be negative"),
                   ("weeks", self.weeks >= 0 and self.pretrain_weeks >= 0, "must not be negative"),
                   ("tau-min", self.tau_min > 0, "must be positive"),
                   ("week-s", self.week_s >= 1, "must be positive"),

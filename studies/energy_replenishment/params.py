@@ -5,11 +5,15 @@ moving 1, working 1, core 0.05 per second); the simulation applies them per 0.1-
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from . import bounds
 
 STRATEGIES = ("fixed", "mobile")
 TICKS_PER_SECOND = 10
+# ARGoS keeps an experiment's length as a 32-bit count of clock ticks (its simulator.cpp casts
+# length x ticks_per_second to UInt32): a longer one would wrap round, or never end.
+MAX_DURATION_S = (2 ** 32 - 1) // TICKS_PER_SECOND
 
 
 @dataclasses.dataclass(frozen=True)
@@ -34,14 +38,19 @@ class Params:
 
     def __post_init__(self) -> None:
         checks = [(self.strategy in STRATEGIES, "strategy must be one of %s" % ", ".join(STRATEGIES)),
+                  (all(math.isfinite(getattr(self, f.name)) for f in dataclasses.fields(self)
+                       if isinstance(getattr(self, f.name), float)), "every rate and length must be a finite number"),
                   (1 <= self.workers <= 100, "workers must be 1..100"),
                   (0 <= self.chargers <= 100, "chargers must be 0..100"),
                   (self.strategy == "fixed" or self.chargers >= 1, "the mobile strategy needs at least one charger"),
                   (self.capacity > 0 and self.charger_capacity > 0, "capacities must be positive"),
                   (self.charge_rate > 0 and self.transfer_rate > 0, "charge and transfer rates must be positive"),
                   (0 <= self.transfer_loss < 1, "transfer loss must be in [0, 1)"),
-                  (min(self.move_rate, self.work_rate, self.core_rate) >= 0, "rates must not be negative"),
+                  (all(rate >= 0 for rate in (self.move_rate, self.work_rate, self.core_rate)),
+                   "rates must not be negative"),
                   (self.speed_cms > 0 and self.duration_s > 0, "speed and duration must be positive"),
+                  (self.duration_s <= MAX_DURATION_S, "duration must be at most %d s (ARGoS counts an experiment's "
+                                                      "length in 32-bit clock ticks)" % MAX_DURATION_S),
                   (self.steering_noise >= 0, "steering noise must not be negative"),
                   (0 <= self.seed < 2 ** 31, "seed must be in [0, 2^31)")]
         for ok, message in checks:

@@ -65,3 +65,11 @@ def test_the_command():
     assert mobile.exit_code == 0 and json.loads(mobile.output)["transfer_s"] == 5.0
     bad = CliRunner().invoke(main, ["bounds", "energy", "--capacity", "10"])
     assert bad.exit_code == 2 and bad.output.startswith("swarmvm: error: bounds energy: a worker cannot reach")
+
+
+@pytest.mark.parametrize("option,value", [("--move-rate", "nan"), ("--work-rate", "inf"), ("--capacity", "nan")])
+def test_bounds_refuse_numbers_that_are_not_finite(option, value):
+    """nan passed click's ranges and printed nan bounds, inf a misleading refusal."""
+    result = CliRunner().invoke(main, ["bounds", "energy", option, value])
+    assert result.exit_code == 2 and result.output.endswith("Invalid value for '%s': %s is not a finite number.\n"
+                                                            % (option, value))

@@ -11,7 +11,7 @@ import pytest
 
 from swarmvm.studies.energy_replenishment import plugin, trial
 from swarmvm.studies.energy_replenishment.experiment import experiment
-from swarmvm.studies.energy_replenishment.params import Params
+from swarmvm.studies.energy_replenishment.params import MAX_DURATION_S, Params
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus" / "openswarm"
 SHORT = dict(duration_s=120.0)
@@ -44,7 +44,8 @@ def test_fixed_strategy_has_no_chargers():
 
 
 @pytest.mark.parametrize("bad", [dict(strategy="both"), dict(transfer_loss=1.0), dict(strategy="mobile", chargers=0),
-                                 dict(capacity=0)])
+                                 dict(capacity=0), dict(work_rate=float("nan")), dict(speed_cms=float("inf")),
+                                 dict(duration_s=MAX_DURATION_S + 1.0)])
 def test_bad_params_rejected(bad):
     with pytest.raises(ValueError):
         Params(**bad)
@@ -129,10 +130,15 @@ def test_sim_energy_command(library):
     assert r["chargers"] == 3 and r["steps"] == 600
 
 
-def test_sim_energy_bad_value_one_line():
-    out = subprocess.run([sys.executable, "-m", "swarmvm", "sim", "energy", "--capacity", "-1"], capture_output=True,
+@pytest.mark.parametrize("option,value,message", [
+    ("--capacity", "-1", "-1.0 is not in the range x>0."),
+    ("--work-rate", "nan", "nan is not a finite number."),          # ARGoS refused it: exit 1, its FATAL lines
+    ("--duration", "1e300", "1e+300 is not in the range 0<x<=%d." % MAX_DURATION_S)])    # ARGoS ran for ever
+def test_sim_energy_bad_value_one_line(option, value, message):
+    out = subprocess.run([sys.executable, "-m", "swarmvm", "sim", "energy", option, value], capture_output=True,
                          text=True)
     assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.endswith("Invalid value for '%s': %s\n" % (option, message))
 
 
 @pytest.mark.emulator

@@ -2,6 +2,7 @@
 
 import json
 
+import pytest
 from click.testing import CliRunner
 
 from swarmvm.cli import main
@@ -22,6 +23,27 @@ def test_sim_rejects_bad_values_with_one_line():
     result = CliRunner().invoke(main, ["sim", "uav", "--drones", "0"])
     assert result.exit_code == 2
     assert result.output.strip() == "swarmvm: error: --drones: must be at least 1"
+
+
+@pytest.mark.parametrize("option,value,message", [
+    ("--rotors", "0", "must be at least 1"),            # equation 14 divides by them: was a ZeroDivisionError
+    ("--disc-m2", "0", "must be positive"), ("--capacity-wh", "0", "must be positive"),
+    ("--speed-ms", "0", "must be positive"), ("--battery-kg", "-1", "must be positive"),
+    ("--charger-eff", "1.5", "must lie in (0, 1]"),
+    ("--tau-min", "inf", "must be a finite number, got inf"),    # orders never came: the trial never ended
+    ("--frame-kg", "nan", "must be a finite number, got nan")])
+def test_sim_refuses_parameters_the_physics_cannot_take(option, value, message):
+    result = CliRunner().invoke(main, ["sim", "uav", option, value, *QUICK])
+    assert result.exit_code == 2 and result.output == "swarmvm: error: %s: %s\n" % (option, message)
+
+
+@pytest.mark.parametrize("option,value,message", [
+    ("--taus", "abc", "'abc' is not a valid float."), ("--taus", "20,nan", "nan is not a finite number."),
+    ("--taus", "0", "0.0 is not in the range x>0."), ("--thresholds", "0.5,2", "2.0 is not in the range 0<=x<=1.")])
+def test_sweep_refuses_grid_values_by_the_option_given(option, value, message, tmp_path):
+    result = CliRunner().invoke(main, ["sweep", "uav", "-o", str(tmp_path / "out"), option, value])
+    assert result.exit_code == 2 and result.output.endswith("Invalid value for '%s': %s\n" % (option, message))
+    assert not (tmp_path / "out").exists()
 
 
 def test_sweep_then_plot(tmp_path):
