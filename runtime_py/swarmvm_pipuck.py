@@ -11,9 +11,24 @@ import socket
 import time
 
 import swarmvm_vm
+from swarmvm_format import MAX_NAME_LENGTH
 
 # Public events travel as UDP broadcasts of the message name on the robots' Wi-Fi network.
 MESSAGE_PORT = 47474
+# The longest broadcast: a name of MAX_NAME_LENGTH characters (letters, digits and '_': nothing
+# for JSON to escape). A longer datagram is not a robot's; read to this length, it fails to parse.
+MAX_DATAGRAM = len(json.dumps({"message": "x" * MAX_NAME_LENGTH}).encode("utf-8"))
+
+
+def message_in(datagram):
+    """The message name a datagram carries, or None for one that is not a robot's broadcast
+    (another program on the port, a damaged or cut datagram): what the network brings must not
+    stop the control loop."""
+    try:
+        message = json.loads(datagram.decode("utf-8")).get("message")
+    except (UnicodeDecodeError, ValueError, AttributeError):     # JSONDecodeError is a ValueError
+        return None
+    return message if isinstance(message, str) else None
 
 
 class PiPuckRobot:
@@ -38,14 +53,16 @@ class PiPuckRobot:
         self._heard = set()
 
     def begin_step(self, number):
-        """Collect the messages that arrived since the previous step."""
+        """Collect the messages that arrived since the previous step (message_in)."""
         self._heard = set()
         while True:
             try:
-                data, _sender = self._socket.recvfrom(256)
+                data, _sender = self._socket.recvfrom(MAX_DATAGRAM)
             except BlockingIOError:
                 return
-            self._heard.add(json.loads(data.decode("utf-8")).get("message"))
+            message = message_in(data)
+            if message is not None:
+                self._heard.add(message)
 
     def event_occurred(self, event):
         """Placeholder for a sensor reading: the controller's checks replace it."""

@@ -67,9 +67,9 @@ def test_hardware_library_is_imported_lazily(out):
     assert "pipuck library is not available" in result.stderr and "--sim" in result.stderr
 
 
-def test_real_adapter_drives_the_pipuck_library(out, tmp_path):
-    """With a stand-in for the hardware library on the path, the real adapter makes the calls of
-    the pipuck API (PiPuck(epuck_version=2), epuck.set_motor_speeds, set_leds_colour)."""
+def hardware_stand_in(tmp_path):
+    """A stand-in for the pipuck hardware library (no real one runs off the robot): it prints
+    the calls of the pipuck API that the real adapter makes. Returns the environment to run with."""
     package = tmp_path / "pipuck"
     package.mkdir()
     (package / "__init__.py").write_text("")
@@ -83,10 +83,37 @@ def test_real_adapter_drives_the_pipuck_library(out, tmp_path):
         "        self.epuck = _EPuck()\n"
         "    def set_leds_colour(self, colour):\n"
         "        print('lib set_leds_colour', colour)\n")
-    env = {"PYTHONPATH": str(tmp_path), "PATH": "/usr/bin:/bin"}
-    result = controller(out, "--steps", "2", "--period", "0", env=env)
+    return {"PYTHONPATH": str(tmp_path), "PATH": "/usr/bin:/bin"}
+
+
+def test_real_adapter_drives_the_pipuck_library(out, tmp_path):
+    """With a stand-in for the hardware library on the path, the real adapter makes the calls of
+    the pipuck API (PiPuck(epuck_version=2), epuck.set_motor_speeds, set_leds_colour)."""
+    result = controller(out, "--steps", "2", "--period", "0", env=hardware_stand_in(tmp_path))
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines() == ["lib PiPuck 2", "lib set_motor_speeds 0 0", "lib set_leds_colour off"]
+
+
+def test_real_adapter_hears_robots_and_ignores_other_datagrams(out, tmp_path):
+    """Real UDP datagrams to the message port: what is not a robot's broadcast (not UTF-8, not
+    JSON, not an object, no string message, longer than any broadcast) is ignored, not a
+    traceback that stops the robot; the longest name (255 characters) arrives whole (datagrams
+    were read to 256 bytes: its broadcast, 270, failed to parse)."""
+    probe = (
+        "import json, socket, swarmvm_pipuck as p\n"
+        "robot = p.PiPuckRobot()\n"
+        "sender = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)\n"
+        "longest = 'n' * 255\n"
+        "for datagram in (b'\\xff\\xfe', b'not json', b'[1, 2]', b'{\"other\": 1}', b'{\"message\": [1]}',\n"
+        "                 json.dumps({'message': 'y' * 5000}).encode(), json.dumps({'message': longest}).encode(),\n"
+        "                 json.dumps({'message': 'go'}).encode()):\n"
+        "    sender.sendto(datagram, ('127.0.0.1', p.MESSAGE_PORT))\n"
+        "robot.begin_step(1)\n"
+        "print(robot.received('go'), robot.received(longest), robot.received('y' * 5000))\n")
+    result = subprocess.run([sys.executable, "-c", probe], cwd=str(out), capture_output=True, text=True,
+                            env=hardware_stand_in(tmp_path), timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == ["lib PiPuck 2", "True True False"]
 
 
 def test_generation_is_deterministic_and_keeps_the_controller(tmp_path):
