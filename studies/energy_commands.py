@@ -110,9 +110,15 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
 @plot.command("energy")
 @click.argument("results", type=click.Path(exists=True, file_okay=False))
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
-def plot_energy(results, out):
-    """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results."""
+@rate_options
+def plot_energy(results, out, **values):
+    """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results, at
+    the rates the sweep was given (the same options)."""
     need_studies_extra()
     from .energy_replenishment import plots
-    for path in plots.draw_all(results, out):
+    paths, missing = plots.draw_all(results, out, params_from(values))
+    for path in paths:
         click.echo(path)
+    for title in missing:
+        click.echo("swarmvm: note: energy: %s: no trials at these rates (give plot the rate options the sweep "
+                   "had, and a sweep of its --figures)" % title, err=True)

@@ -10,7 +10,7 @@ dot, the mean as a diamond on the line, the standard deviation as a band."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import List
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -26,18 +26,22 @@ def _spent(trials):
     return trials["consumed"] + trials["lost"]
 
 
-def _at_default(trials, **except_these):
-    """Trials whose rates are the defaults, except the columns named."""
+def _at_base(trials, base: Params, **except_these):
+    """Trials whose rates are the sweep's base rates (``base``: what `sweep energy` was given),
+    except the columns named."""
     keep = np.ones(len(trials), dtype=bool)
     for column in ("work_rate", "move_rate", "core_rate", "charge_rate", "transfer_rate", "transfer_loss", "capacity",
                    "workers", "duration_s"):
         if column not in except_these:
-            keep &= np.isclose(trials[column], getattr(DEFAULT, column))
+            keep &= np.isclose(trials[column], getattr(base, column))
     return trials[keep]
 
 
-def figure9(plt, trials, path: Path) -> Path:
-    rows = _at_default(trials).copy()
+def figure9(plt, trials, base: Params, path: Path) -> Optional[Path]:
+    """Figure 9, or None without trials at the base rates."""
+    rows = _at_base(trials, base).copy()
+    if rows.empty:
+        return None
     rows["phi"] = np.where(rows["strategy"] == "fixed", 0.0, rows["charger_capacity"] / rows["capacity"])
     rows["n_m"] = np.where(rows["strategy"] == "fixed", 0, rows["chargers"])
     rows["spent"] = _spent(rows)
@@ -83,29 +87,35 @@ def _lines(plt, rows, column: str, xlabel: str, title: str, path: Path, log_x: b
     return save(figure, path)
 
 
-def _figure_rows(trials, column: str):
+def _figure_rows(trials, base: Params, column: str):
     """Fixed chargers and mobile chargers (6, twice the workers' capacity) varying `column`."""
-    rows = _at_default(trials, **{column: True, "transfer_rate": column == "charge_rate"})
+    rows = _at_base(trials, base, **{column: True, "transfer_rate": column == "charge_rate"})
     mobile = (rows["strategy"] == "mobile") & (rows["chargers"] == 6) & np.isclose(rows["charger_capacity"],
                                                                                   2 * rows["capacity"])
     return rows[(rows["strategy"] == "fixed") | mobile].copy()
 
 
-def figure10(plt, trials, path: Path) -> Path:
-    rows = _figure_rows(trials, "work_rate")
+def figure10(plt, trials, base: Params, path: Path) -> Optional[Path]:
+    rows = _figure_rows(trials, base, "work_rate")
+    if rows.empty:
+        return None
     rows["ratio"] = rows["work_rate"] / rows["move_rate"]
     return _lines(plt, rows, "ratio", "workload ratio nu_work / nu_move", "Figure 10: workload", path, log_x=True)
 
 
-def figure11(plt, trials, path: Path) -> Path:
-    rows = _figure_rows(trials, "charge_rate")
+def figure11(plt, trials, base: Params, path: Path) -> Optional[Path]:
+    rows = _figure_rows(trials, base, "charge_rate")
     rows = rows[np.isclose(rows["charge_rate"], rows["transfer_rate"])].copy()
+    if rows.empty:
+        return None
     rows["per_step"] = rows["charge_rate"] / 10
     return _lines(plt, rows, "per_step", "charging = transfer rate (per 0.1-s step)", "Figure 11: charging rate", path)
 
 
-def figure12(plt, trials, path: Path) -> Path:
-    rows = _figure_rows(trials, "transfer_loss")
+def figure12(plt, trials, base: Params, path: Path) -> Optional[Path]:
+    rows = _figure_rows(trials, base, "transfer_loss")
+    if rows.empty:
+        return None
     fixed = rows[rows["strategy"] == "fixed"]
     losses = sorted(rows.loc[rows["strategy"] == "mobile", "transfer_loss"].unique())
     import pandas as pd   # the fixed strategy has no transfers: its trials drawn at every loss
@@ -122,16 +132,24 @@ def summarise(trials):
     return table.reset_index()
 
 
-def draw_all(results, out) -> List[Path]:
+def draw_all(results, out, base: Params = DEFAULT) -> Tuple[List[Path], List[str]]:
+    """The figures of the trials at ``base``'s rates (those of the sweep: a sweep at other
+    rates than the defaults is drawn with the same rates) and the summary table; returns the
+    files written and the figures left out for want of trials at those rates (a sweep of some
+    figures only, or at other rates), rather than drawn empty."""
     plt = pyplot()
     trials = load(results)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, draw in (("energy_fig9.png", figure9), ("energy_fig10.png", figure10), ("energy_fig11.png", figure11),
-                       ("energy_fig12.png", figure12)):
-        paths.append(draw(plt, trials, out / name))
+    paths, missing = [], []
+    for name, title, draw in (("energy_fig9.png", "Figure 9", figure9), ("energy_fig10.png", "Figure 10", figure10),
+                              ("energy_fig11.png", "Figure 11", figure11), ("energy_fig12.png", "Figure 12", figure12)):
+        path = draw(plt, trials, base, out / name)
+        if path is None:
+            missing.append(title)
+        else:
+            paths.append(path)
     summary = out / "energy_summary.csv"
     summarise(trials).to_csv(summary, index=False, float_format="%.4f")
     paths.append(summary)
-    return paths
+    return paths, missing
