@@ -174,8 +174,11 @@ def plot_uav(results, out, tau):
     """Drone delivery: the seed's Figures 16-20 (and a summary table) from sweep results."""
     need_studies_extra()
     from .drone_delivery import plots
-    for path in plots.draw_all(results, out, tau=tau):
+    paths, missing = plots.draw_all(results, out, tau=tau)
+    for path in paths:
         click.echo(path)
+    for text in missing:
+        click.echo("swarmvm: note: uav: %s: give --tau one of them" % text, err=True)
 
 
 COMMANDS = (sim, sweep, plot)

@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import List
+from typing import List, Tuple
 
 import numpy as np
 
@@ -150,32 +150,46 @@ def summary_markdown(frames) -> str:
     return "\n".join(lines) + "\n"
 
 
-def draw_all(results, out, tau: float = 20.0) -> List[Path]:
-    """Every figure the results allow, into ``out``; returns the files written."""
+def draw_all(results, out, tau: float = 20.0) -> Tuple[List[Path], List[str]]:
+    """Every figure the results allow, into ``out``; returns the files written and what is left
+    out for want of trials at ``tau`` (Figures 17, 18 and 20 are drawn at one inter-arrival
+    mean: at a tau the sweep did not run they would be empty)."""
     frames = load(results)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     plt = _pyplot()
-    written = []
+    written: List[Path] = []
+    missing: List[str] = []
     trials = frames["trials"]
     if trials.empty:
-        return written
+        return written, missing
     measured = _measured(trials)
     labels = set(_label(measured))
+    at_tau = set(_label(measured[np.isclose(measured["tau_min"], tau)]))
+    swept = ", ".join("%g" % t for t in sorted(trials["tau_min"].unique()))
+
+    def at(title: str, present: bool) -> bool:
+        """Whether a figure at tau has trials; if not, it is named in ``missing``."""
+        if not present:
+            missing.append("%s: no trials at tau %g min (the sweep's: %s)" % (title, tau, swept))
+        return present
+
     learning = [r for r in ("least-confident", "most-confident", "random") if r in labels]
     if learning:
         written.append(figure16(plt, frames, out / "uav_fig16_rules.png", learning))
-        written.append(figure17(plt, frames, out / "uav_fig17_accuracy.png", tau))
-    if "least-confident" in labels:
+        if at("Figure 17", bool(at_tau & set(learning))):
+            written.append(figure17(plt, frames, out / "uav_fig17_accuracy.png", tau))
+    if "least-confident" in labels and at("Figure 18", "least-confident" in at_tau):
         written.append(figure18(plt, frames, out / "uav_fig18_soh_maps.png", tau))
     thresholds = sorted((label for label in labels if label.startswith("threshold")),
                         key=lambda label: abs(int(label[10:-1]) - 80))
     if thresholds and "least-confident" in labels:       # against the best threshold of the seed, 80 %
         written.append(figure16(plt, frames, out / "uav_fig19_threshold.png", ["least-confident", thresholds[0]]))
-    if (trials["pretrain_weeks"] > 0).any():
+    pretrained = trials[trials["pretrain_weeks"] > 0]
+    if not pretrained.empty and at("Figure 20", bool(np.isclose(pretrained["tau_min"], tau).any())):
         written.append(figure20(plt, frames, out / "uav_fig20_forecast.png", tau))
     plt.close("all")
     summary = out / "uav_summary.md"
     summary.write_text(summary_markdown(frames))
     written.append(summary)
-    return written
+    return written, missing

@@ -62,6 +62,13 @@ def test_sweep_then_plot(tmp_path):
     assert again.exit_code == 0, again.output
     for name in names:                                   # the figures are deterministic
         assert (tmp_path / "img" / name).read_bytes() == (tmp_path / "again" / name).read_bytes()
+    elsewhere = CliRunner().invoke(main, ["plot", "uav", str(out), "-o", str(tmp_path / "at10"), "--tau", "10"])
+    assert elsewhere.exit_code == 0, elsewhere.output       # the figures at one tau: none at 10, not drawn empty
+    assert {line.rsplit("/", 1)[-1] for line in elsewhere.stdout.split()} == {
+        "uav_fig16_rules.png", "uav_fig19_threshold.png", "uav_summary.md"}
+    assert elsewhere.stderr.splitlines() == [
+        "swarmvm: note: uav: Figure %d: no trials at tau 10 min (the sweep's: 20): give --tau one of them" % n
+        for n in (17, 18)]
     bad = CliRunner().invoke(main, ["sweep", "uav", "-o", str(out), "--rules", "fastest"])
     assert bad.exit_code == 2 and bad.output.startswith("swarmvm: error: --rules: unknown rule 'fastest'")
 
