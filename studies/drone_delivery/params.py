@@ -6,6 +6,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ..fields import non_finite
+
 RULES = ("least-confident", "most-confident", "random", "threshold")
 TICKS_PER_WEEK = 7 * 24 * 3600          # one tick is one simulated second
 
@@ -50,24 +52,21 @@ class Params:
     def __post_init__(self) -> None:
         if self.rule not in RULES:
             raise ValueError("--rule: must be one of %s, got %r" % (", ".join(RULES), self.rule))
-        for field in dataclasses.fields(self):      # nan and inf pass every comparison below or loop for ever
-            value = getattr(self, field.name)
-            if isinstance(value, float) and not math.isfinite(value):
-                raise ValueError("--%s: must be a finite number, got %r" % (field.name.replace("_", "-"), value))
+        unusable = non_finite(self)
+        if unusable:
+            raise ValueError("--%s: must be a finite number, got %r" % (unusable.replace("_", "-"),
+                                                                      getattr(self, unusable)))
         # The physics (equations 14 and 15) divides by rotors, disc area, capacity and speed.
         positive = ("frame_kg", "battery_kg", "disc_m2", "speed_ms", "capacity_wh", "charger_w", "gravity",
-                    "air_density", "deliver_radius_m")
-        for name in positive:
-            if not getattr(self, name) > 0:
-                raise ValueError("--%s: must be positive" % name.replace("_", "-"))
-        checks = [("drones", self.drones >= 1, "must be at least 1"),
+                    "air_density", "deliver_radius_m", "tau_min")
+        checks = [(name.replace("_", "-"), getattr(self, name) > 0, "must be positive") for name in positive]
+        checks += [("drones", self.drones >= 1, "must be at least 1"),
                   ("rotors", self.rotors >= 1, "must be at least 1"),
                   ("charger-eff", 0 < self.charger_eff <= 1, "must lie in (0, 1]"),
                   ("home-radius-m", self.home_radius_m >= 0, "must not be negative"),
                   ("alpha", self.alpha >= 0, "must not be negative"),
                   ("init-epochs", self.init_epochs >= 0, "must not be negative"),
                   ("weeks", self.weeks >= 0 and self.pretrain_weeks >= 0, "must not be negative"),
-                  ("tau-min", self.tau_min > 0, "must be positive"),
                   ("week-s", self.week_s >= 1, "must be positive"),
                   ("soh-min", 0 < self.soh_min <= self.soh_max <= 1, "need 0 < soh-min <= soh-max <= 1"),
                   ("d-min-m", 0 < self.d_min_m <= self.d_max_m, "need 0 < d-min-m <= d-max-m"),

@@ -5,8 +5,8 @@ moving 1, working 1, core 0.05 per second); the simulation applies them per 0.1-
 from __future__ import annotations
 
 import dataclasses
-import math
 
+from ..fields import non_finite
 from . import bounds
 
 STRATEGIES = ("fixed", "mobile")
@@ -38,8 +38,7 @@ class Params:
 
     def __post_init__(self) -> None:
         checks = [(self.strategy in STRATEGIES, "strategy must be one of %s" % ", ".join(STRATEGIES)),
-                  (all(math.isfinite(getattr(self, f.name)) for f in dataclasses.fields(self)
-                       if isinstance(getattr(self, f.name), float)), "every rate and length must be a finite number"),
+                  (non_finite(self) is None, "every rate and length must be a finite number"),
                   (1 <= self.workers <= 100, "workers must be 1..100"),
                   (0 <= self.chargers <= 100, "chargers must be 0..100"),
                   (self.strategy == "fixed" or self.chargers >= 1, "the mobile strategy needs at least one charger"),
