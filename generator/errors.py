@@ -4,6 +4,8 @@ The CLI prints it as ``swarmvm: error: <line>`` and exits with status 2; nothing
 
 import os
 
+from .escape import terminal
+
 MAX_BYTES = 1 << 20   # no real supervisor comes near it (the corpus's largest is 11 kB)
 
 
@@ -16,14 +18,7 @@ class InputError(Exception):
 
     def __str__(self):
         parts = [self.file, self.key, self.where, self.message]
-        return ": ".join(printable(part) for part in parts if part)
-
-
-def printable(text):
-    """``text`` with each unprintable character (a line break, an escape, NUL) written as its
-    Python escape: names and values come from the input, and the error must stay one line that
-    sends nothing but text to the terminal."""
-    return text if text.isprintable() else "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+        return ": ".join(terminal(part) for part in parts if part)
 
 
 def ascii_int(text, digits=9):

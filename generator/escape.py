@@ -1,0 +1,154 @@
+"""The one place where user text enters swarmvm's output: a function per output context.
+
+File names, model and event names, keys and paths come from other people's files. Wherever
+swarmvm writes them (generated C, C++, Python, Make and CMake text, YAML, libFAUDES ``.gen``,
+Graphviz, Markdown, HTML, the terminal) they pass through the function for that context here,
+and nowhere else. Each function returns text that, placed in its context, is read back as data:
+it cannot end a comment or string, start a command, continue a line or move the cursor.
+
+Templates reach these only as Jinja filters (:data:`FILTERS`); tests/security/test_templates.py
+fails a template that writes a value through no filter. Text a context cannot represent raises
+:class:`UnsafeText`, a ValueError, which the callers turn into an InputError naming the input.
+
+Unprintable and (where the context needs ASCII) non-ASCII characters are written as Python's
+escapes (``\\n``, ``\\x1b``, ``\\u202e``), so what a person reads names the character."""
+
+import html as _html
+import json
+import re
+
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+# Characters a comment keeps as they are in every language swarmvm writes comments in (C, C++,
+# Python, Make, CMake, YAML, .gen): none can end or nest a comment (``*/``, ``/*``), continue a
+# line (a trailing backslash), form a trigraph (``??/``) or end a docstring (``"""``).
+_COMMENT_SAFE = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                          " _-.,:;+=()[]{}<>@!%&^~|'#/$")
+_MARKDOWN_SPECIAL = frozenset("\\`*_{}[]<>()#+-.!|~")
+
+
+class UnsafeText(ValueError):
+    """User text that a context cannot represent (an identifier that is not one, say)."""
+
+
+def _escape(char: str) -> str:
+    """``char`` as Python writes it escaped: ``\\n``, ``\\x1b``, ``\\u202e``, ``\\U0001f600``."""
+    if char in "\n\t\r":
+        return {"\n": "\\n", "\t": "\\t", "\r": "\\r"}[char]
+    code = ord(char)
+    if code < 0x100:
+        return "\\x%02x" % code
+    return "\\u%04x" % code if code < 0x10000 else "\\U%08x" % code
+
+
+def terminal(text: str) -> str:
+    """``text`` for a terminal line: each unprintable character (a line break, an escape
+    sequence's ESC, a bidirectional override, NUL) written as its escape, so a message stays one
+    line and sends the terminal nothing but text."""
+    return text if text.isprintable() else "".join(c if c.isprintable() else _escape(c) for c in text)
+
+
+def comment(text: str) -> str:
+    """``text`` inside a comment of C (``/* */`` and ``//``), C++, Python (``#`` and
+    docstrings), Make, CMake, YAML or ``.gen``: ASCII that cannot end the comment, with every
+    other character (a newline, ``*``, ``?``, a backslash, a quote, non-ASCII) escaped."""
+    return "".join(c if c in _COMMENT_SAFE else _escape(c) for c in text)
+
+
+def c_string(text: str) -> str:
+    """A C or C++ string literal (quotes included) holding ``text``'s UTF-8 bytes: printable
+    ASCII as itself, ``"``, ``\\`` and ``?`` (trigraphs) escaped, other bytes in octal, which
+    unlike ``\\x`` cannot swallow the digits after it."""
+    out = []
+    for byte in text.encode("utf-8"):
+        char = chr(byte)
+        if char in '"\\?':
+            out.append("\\" + char)
+        elif 0x20 <= byte < 0x7F:
+            out.append(char)
+        else:
+            out.append("\\%03o" % byte)
+    return '"%s"' % "".join(out)
+
+
+def py_string(text: str) -> str:
+    """A Python string literal (quotes included) equal to ``text``, in ASCII."""
+    return ascii(str(text))
+
+
+def cmake_string(text: str) -> str:
+    """A CMake quoted argument equal to ``text``: ``\\``, ``"``, ``$`` (variable references)
+    and ``;`` (list separators) escaped, line breaks and tabs as ``\\n``/``\\t``/``\\r``; other
+    control characters have no CMake spelling and raise UnsafeText."""
+    out = []
+    for char in text:
+        if char in '\\"$;':
+            out.append("\\" + char)
+        elif char in "\n\t\r":
+            out.append(_escape(char))
+        elif not char.isprintable():
+            raise UnsafeText("%s: a control character CMake cannot quote" % terminal(text))
+        else:
+            out.append(char)
+    return '"%s"' % "".join(out)
+
+
+def yaml_string(text: str) -> str:
+    """A YAML double-quoted scalar equal to ``text`` (JSON's string escapes, which YAML reads)."""
+    return json.dumps(str(text), ensure_ascii=True)
+
+
+def gen_string(text: str) -> str:
+    """A libFAUDES token-format string (quotes included). libFAUDES strings have no escapes:
+    ``text`` must be printable ASCII without ``"`` or white space, else UnsafeText."""
+    if not text or not text.isascii() or not text.isprintable() or '"' in text or " " in text:
+        raise UnsafeText("%s: not a libFAUDES name (printable ASCII, no quote or space)" % terminal(text))
+    return '"%s"' % text
+
+
+def dot_string(text: str) -> str:
+    """A Graphviz double-quoted ID (quotes included) that draws as ``text``: unprintable
+    characters shown as their escapes, ``\\`` and ``"`` escaped (Graphviz reads ``\\n``,
+    ``\\l``, ``\\N`` in labels as commands)."""
+    return '"%s"' % terminal(text).replace("\\", "\\\\").replace('"', '\\"')
+
+
+def markdown(text: str) -> str:
+    """``text`` as literal Markdown inline text (a table cell, say): unprintable characters
+    shown as their escapes, then every character Markdown gives a meaning (``|``, ``*``,
+    backquotes, brackets, ``<``) backslash-escaped."""
+    return "".join("\\" + c if c in _MARKDOWN_SPECIAL else c for c in terminal(text))
+
+
+def html(text: str) -> str:
+    """``text`` as HTML text or a quoted attribute value: unprintable characters shown as
+    their escapes, then ``& < > " '`` as entities."""
+    return _html.escape(terminal(text), quote=True)
+
+
+def identifier(text: str) -> str:
+    """``text`` when it is an ASCII identifier (C, C++, Python, Make and CMake take it as it
+    is), else UnsafeText: names reach generated code only as identifiers validated here."""
+    if not isinstance(text, str) or not _IDENTIFIER.match(text):
+        raise UnsafeText("%r is not an identifier" % (text,))
+    return text
+
+
+def number(value: object) -> str:
+    """An integer as decimal text; UnsafeText for anything else (a str that looks like a number
+    included), so a template cannot pass text off as a number."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise UnsafeText("%r is not an integer" % (value,))
+    return str(value)
+
+
+# The Jinja filters the templates use to write a value (swarmvm.render.ENV); every ``{{ }}``
+# of a template ends in one of these, or in one of render's filters of bytes and numbers.
+FILTERS = {
+    "comment": comment,
+    "c_string": c_string,
+    "py_string": py_string,
+    "cmake_string": cmake_string,
+    "yaml_string": yaml_string,
+    "ident": identifier,
+    "num": number,
+}
