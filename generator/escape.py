@@ -6,7 +6,7 @@ Graphviz, Markdown, HTML, the terminal) they pass through the function for that 
 and nowhere else. Each function returns text that, placed in its context, is read back as data:
 it cannot end a comment or string, start a command, continue a line or move the cursor.
 
-Templates reach these only as Jinja filters (:data:`FILTERS`); tests/security/test_templates.py
+Templates reach these only as Jinja filters (:data:`FILTERS`); tests/security/test_template_filters.py
 fails a template that writes a value through no filter. Text a context cannot represent raises
 :class:`UnsafeText`, a ValueError, which the callers turn into an InputError naming the input.
 
@@ -14,13 +14,14 @@ Unprintable and (where the context needs ASCII) non-ASCII characters are written
 escapes (``\\n``, ``\\x1b``, ``\\u202e``), so what a person reads names the character."""
 
 import html as _html
-import json
 import re
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]+\Z")
 # Characters a comment keeps as they are in every language swarmvm writes comments in (C, C++,
-# Python, Make, CMake, YAML, .gen): none can end or nest a comment (``*/``, ``/*``), continue a
-# line (a trailing backslash), form a trigraph (``??/``) or end a docstring (``"""``).
+# Python, Make, CMake, YAML, .gen, XML): none can end or nest a comment (``*/``, ``/*``, and
+# ``--`` is split), continue a line (a trailing backslash), form a trigraph (``??/``) or end a
+# docstring (``"""``).
 _COMMENT_SAFE = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
                           " _-.,:;+=()[]{}<>@!%&^~|'#/$")
 _MARKDOWN_SPECIAL = frozenset("\\`*_{}[]<>()#+-.!|~")
@@ -50,8 +51,9 @@ def terminal(text: str) -> str:
 def comment(text: str) -> str:
     """``text`` inside a comment of C (``/* */`` and ``//``), C++, Python (``#`` and
     docstrings), Make, CMake, YAML or ``.gen``: ASCII that cannot end the comment, with every
-    other character (a newline, ``*``, ``?``, a backslash, a quote, non-ASCII) escaped."""
-    return "".join(c if c in _COMMENT_SAFE else _escape(c) for c in text)
+    other character (a newline, ``*``, ``?``, a backslash, a quote, non-ASCII) escaped, and
+    ``--`` (which ends an XML comment) split as ``-\\x2d``."""
+    return "".join(c if c in _COMMENT_SAFE else _escape(c) for c in text).replace("--", "-\\x2d")
 
 
 def c_string(text: str) -> str:
@@ -70,18 +72,26 @@ def c_string(text: str) -> str:
     return '"%s"' % "".join(out)
 
 
+def _double_quoted(text: str) -> str:
+    """``text`` between double quotes with ``"`` and ``\\`` escaped and every character outside
+    printable ASCII as its escape: a string literal of Python and a double-quoted scalar of YAML
+    alike (both read ``\\xHH``, ``\\uHHHH`` and ``\\UHHHHHHHH``)."""
+    return '"%s"' % "".join("\\" + c if c in '"\\' else c if " " <= c <= "~" else _escape(c) for c in str(text))
+
+
 def py_string(text: str) -> str:
-    """A Python string literal (quotes included) equal to ``text``, in ASCII."""
-    return ascii(str(text))
+    """A double-quoted Python string literal equal to ``text``, in ASCII."""
+    return _double_quoted(text)
 
 
 def cmake_string(text: str) -> str:
-    """A CMake quoted argument equal to ``text``: ``\\``, ``"``, ``$`` (variable references)
-    and ``;`` (list separators) escaped, line breaks and tabs as ``\\n``/``\\t``/``\\r``; other
-    control characters have no CMake spelling and raise UnsafeText."""
+    """A CMake quoted argument equal to ``text``: ``\\``, ``"`` and ``$`` (variable references)
+    escaped, line breaks and tabs as ``\\n``/``\\t``/``\\r``; other control characters have no
+    CMake spelling and raise UnsafeText. (A ``;`` stays: it is a list separator only where the
+    value is later expanded unquoted.)"""
     out = []
     for char in text:
-        if char in '\\"$;':
+        if char in '\\"$':
             out.append("\\" + char)
         elif char in "\n\t\r":
             out.append(_escape(char))
@@ -93,8 +103,8 @@ def cmake_string(text: str) -> str:
 
 
 def yaml_string(text: str) -> str:
-    """A YAML double-quoted scalar equal to ``text`` (JSON's string escapes, which YAML reads)."""
-    return json.dumps(str(text), ensure_ascii=True)
+    """A YAML double-quoted scalar equal to ``text``, in ASCII."""
+    return _double_quoted(text)
 
 
 def gen_string(text: str) -> str:
@@ -105,11 +115,16 @@ def gen_string(text: str) -> str:
     return '"%s"' % text
 
 
+def dot_text(text: str) -> str:
+    """``text`` inside a Graphviz double-quoted ID, drawn as it is: unprintable characters
+    shown as their escapes, ``\\`` and ``"`` escaped (Graphviz reads ``\\n``, ``\\l``, ``\\N``
+    in labels as commands)."""
+    return terminal(text).replace("\\", "\\\\").replace('"', '\\"')
+
+
 def dot_string(text: str) -> str:
-    """A Graphviz double-quoted ID (quotes included) that draws as ``text``: unprintable
-    characters shown as their escapes, ``\\`` and ``"`` escaped (Graphviz reads ``\\n``,
-    ``\\l``, ``\\N`` in labels as commands)."""
-    return '"%s"' % terminal(text).replace("\\", "\\\\").replace('"', '\\"')
+    """A Graphviz double-quoted ID (quotes included) drawn as ``text`` (:func:`dot_text`)."""
+    return '"%s"' % dot_text(text)
 
 
 def markdown(text: str) -> str:
@@ -129,16 +144,24 @@ def identifier(text: str) -> str:
     """``text`` when it is an ASCII identifier (C, C++, Python, Make and CMake take it as it
     is), else UnsafeText: names reach generated code only as identifiers validated here."""
     if not isinstance(text, str) or not _IDENTIFIER.match(text):
-        raise UnsafeText("%r is not an identifier" % (text,))
+        raise UnsafeText("%s is not an identifier" % terminal(repr(text)))
     return text
 
 
-def number(value: object) -> str:
-    """An integer as decimal text; UnsafeText for anything else (a str that looks like a number
-    included), so a template cannot pass text off as a number."""
+def identifier_part(text: str) -> str:
+    """``text`` when it can continue an identifier (ASCII letters, digits, ``_``; an event's
+    callback stem after ``on_``, say), else UnsafeText."""
+    if not isinstance(text, str) or not _IDENTIFIER_PART.match(text):
+        raise UnsafeText("%s cannot be part of an identifier" % terminal(repr(text)))
+    return text
+
+
+def number(value: object, width: int = 0) -> str:
+    """An integer as decimal text, left-justified to ``width``; UnsafeText for anything else (a
+    str that looks like a number included), so a template cannot pass text off as a number."""
     if isinstance(value, bool) or not isinstance(value, int):
-        raise UnsafeText("%r is not an integer" % (value,))
-    return str(value)
+        raise UnsafeText("%s is not an integer" % terminal(repr(value)))
+    return str(value).ljust(width)
 
 
 # The Jinja filters the templates use to write a value (swarmvm.render.ENV); every ``{{ }}``
@@ -150,5 +173,6 @@ FILTERS = {
     "cmake_string": cmake_string,
     "yaml_string": yaml_string,
     "ident": identifier,
+    "ident_part": identifier_part,
     "num": number,
 }

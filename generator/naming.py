@@ -15,8 +15,10 @@ is written:
   library declares can clash with it; it must be an ASCII identifier that no language or
   runtime keeps for itself.
 
-A rule one target only needs (the Kilobot's 9-byte messages) refuses the model for that target,
-naming it (swarmvm.targets.generate)."""
+A rule one target only needs refuses the model for that target alone, naming it
+(swarmvm.targets.generate; ``swarmvm check --target T`` applies them up front): the Kilobot's
+9-byte messages (:func:`kilobot_messages`), and ARGoS's 16-bit message codes and C++'s
+reservation of identifiers holding ``__`` (:func:`argos_names`)."""
 
 import keyword
 import re
@@ -113,29 +115,36 @@ class EventNames:
 
 def event_names(model: Model) -> list[EventNames]:
     """The names of every event, in model order; InputError naming the two events when two
-    callbacks or two message codes would be one."""
+    callbacks would be one (every target names callbacks by this rule)."""
     result: list[EventNames] = []
     stems: dict[str, str] = {}
-    codes: dict[int, str] = {}
     for i, name in enumerate(model.events):
         controllable, public = bool(model.controllable[i]), bool(model.public[i])
         stem = callback_stem(name)
-        if "__" in stem:
-            raise InputError(model.source, "events", "C++ reserves identifiers with '__': rename the event",
-                             "event EV_%s" % name)
         other = stems.setdefault(stem, name)
         if other != name:
             raise InputError(model.source, "events", "EV_%s and EV_%s would both have the callbacks *_%s: rename one"
                              % (other, name, stem), "event EV_%s" % name)
         message = message_name(name, controllable) if public else None
         code = message_code(message) if message is not None else None
-        if message is not None and code is not None:
-            first = codes.setdefault(code, message)
-            if first != message:
-                raise InputError(model.source, "events", "messages %r and %r have the same 16-bit ARGoS code %d: rename one"
-                                 % (first, message, code), "event EV_%s" % name)
         result.append(EventNames(i, name, "EV_" + name, stem, controllable, public, message, code))
     return result
+
+
+def argos_names(model: Model, events: list[EventNames]) -> None:
+    """The ARGoS target's own rules: InputError naming the event when its C++ callbacks would
+    hold ``__`` (reserved to the implementation in C++, not in C or Python), or when two messages
+    share a 16-bit range-and-bearing code."""
+    codes: dict[int, str] = {}
+    for e in events:
+        if "__" in e.stem:
+            raise InputError(model.source, "events", "C++ reserves identifiers with '__': rename the event",
+                             "event %s" % e.const)
+        if e.message is not None and e.code is not None:
+            first = codes.setdefault(e.code, e.message)
+            if first != e.message:
+                raise InputError(model.source, "events", "messages %r and %r have the same 16-bit ARGoS code %d: "
+                                 "rename one" % (first, e.message, e.code), "event %s" % e.const)
 
 
 def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:

@@ -8,8 +8,9 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import __version__, kilobot
+from . import __version__, argos, kilobot
 from .errors import InputError
+from .escape import UnsafeText
 from .render import context, render
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
 
@@ -54,7 +55,8 @@ TARGETS = {
                    ("argos/CMakeLists.txt.j2", "CMakeLists.txt", True),
                    ("argos/experiment.argos.j2", "{name}.argos", True)),
         copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_controller.hpp",
-                                                     "swarmvm_argos_report.hpp", "swarmvm_argos.cmake"))),
+                                                     "swarmvm_argos_report.hpp", "swarmvm_argos.cmake")),
+        prepare=argos.prepare),
     "pipuck": Target(
         "Pi-puck controller (Python): tables, the Python VM, robot adapters (real and --sim), fixed-rate app, controller skeleton",
         templates=(("python/tables.py.j2", "{name}_tables.py", False),
@@ -112,7 +114,11 @@ def generate(compiled, target, **options):
         templates, copies = templates + spec.learned_templates, copies + spec.learned_copies
     files = {"%s.svm" % name: (compiled.image, False)}
     for template, output, keep in templates:
-        files[output.format(name=name)] = (render(template, values), keep)
+        rel = output.format(name=name)
+        try:
+            files[rel] = (render(template, values), keep)
+        except UnsafeText as error:     # text that file's language cannot hold (swarmvm.escape)
+            raise InputError(compiled.model.source, "--target", "target %s: %s: %s" % (target, rel, error))
     for source, output in copies:
         files[output.format(name=name)] = (copy_banner(output) + source.read_bytes(), False)
     return files
