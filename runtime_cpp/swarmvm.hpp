@@ -104,7 +104,8 @@ public:
     using std::invalid_argument::invalid_argument;
 };
 
-// A check or an action threw; the original exception is nested (std::rethrow_if_nested).
+// A check, an action or the violation hook threw; the original exception is nested
+// (std::rethrow_if_nested).
 // The policy (docs/semantics.md, "Callbacks that raise"), as the Python VM's CallbackError: a
 // check that throws ends the step before any transition, so the VM is as it was before the
 // step; an action that throws ends the step after its own event's transition, which stays
@@ -115,7 +116,7 @@ public:
         : std::runtime_error("the " + kind + " of " + event + " threw: " + cause),
           event_(std::move(event)), kind_(std::move(kind)) {}
     const std::string& event() const { return event_; }   // the event's name
-    const std::string& kind() const { return kind_; }     // "check" or "action"
+    const std::string& kind() const { return kind_; }     // "check", "action" or "violation hook"
 
 private:
     std::string event_;
@@ -1329,7 +1330,8 @@ private:
     }
 
     // The hook may not load an image (load() refuses): transit() is still walking the
-    // event's supervisors in the tables a load would free.
+    // event's supervisors in the tables a load would free. A hook that throws ends the step
+    // there, as CallbackError "violation hook" (docs/targets-cpp-python.md, "Exceptions").
     void violated(unsigned event, unsigned s) {
         if (violations_ != kMaxViolations) ++violations_;
         if (!on_violation_) return;
@@ -1338,7 +1340,7 @@ private:
             on_violation_(event, s);
         } catch (...) {
             in_violation_hook_ = false;
-            throw;
+            callback_threw(event, "violation hook");
         }
         in_violation_hook_ = false;
     }

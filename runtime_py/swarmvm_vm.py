@@ -45,7 +45,7 @@ class UnboundEvents(LookupError):
 
 
 class CallbackError(RuntimeError):
-    """A check or an action raised; the original exception is ``__cause__``.
+    """A check, an action or the violation hook raised; the original exception is ``__cause__``.
 
     The policy (docs/semantics.md, "Callbacks that raise"): a check that raises ends the step
     before any transition, so the VM is as it was before the step; an action that raises ends
@@ -605,6 +605,8 @@ class VM:
             self._in_hook = True
             try:
                 self.on_violation(event, sup)
+            except Exception as exc:    # ends the step here, as in C++ (docs/semantics.md)
+                raise CallbackError(self.image.event_name(event), "violation hook", exc) from exc
             finally:
                 self._in_hook = False
 

@@ -114,3 +114,6 @@ SWAP_FIRST = supervisor_yaml(["c", "d", "x", "y"], [1, 1, 0, 0], [{"c", "d", "x"
                              [[[("c", 1), ("d", 0), ("x", 1), ("y", 0)], [("c", 0), ("x", 0), ("y", 1)]]])
 SWAP_SECOND = supervisor_yaml(["b", "x", "y"], [1, 0, 0], [{"b", "x", "y"}],
                               [[[("b", 1), ("x", 0)], [("b", 0), ("x", 1), ("y", 0)]]])
+# A violation hook's failure (docs/semantics.md, "Callbacks that raise"): EV_u has no move in
+# supervisor 0 and moves supervisor 1 from 0 to 1; controllable EV_c loops in supervisor 0.
+HOOKED = supervisor_yaml(["c", "u"], [1, 0], [{"c", "u"}, {"u"}], [[[("c", 0)]], [[("u", 1)], [("u", 1)]]])

@@ -1,7 +1,8 @@
 // C++ callbacks that throw (docs/semantics.md, "Callbacks that raise"): swarmvm::CallbackError
 // names the event and the kind of callback, the original nested in it; a throwing check leaves
 // the VM as it was before the step, a throwing action keeps its own transition; the next step
-// runs normally. Usage: callback_errors IMAGE.svm; one line per finding, checked by
+// runs normally; a throwing violation hook ends the step at the violation. Usage:
+// callback_errors IMAGE.svm HOOK.svm; one line per finding, checked by
 // tests/cpp/test_callback_errors_cpp.py.
 #include <cstdint>
 #include <cstdio>
@@ -162,11 +163,36 @@ void rebinding_check(const swarmvm::Image& image) {
     std::printf("rebind next-step-same=%d\n", got == want && same_vm(vm, reference) ? 1 : 0);
 }
 
+// A violation hook that throws (HOOK.svm: supervisor 0 has no move on EV_u, supervisor 1 moves
+// on it): the step ends at the violation, as in Python: supervisor 1 has not moved, the
+// violation is counted, EV_u's action has not run; the next step runs normally.
+void throwing_hook(const swarmvm::Image& image) {
+    VM vm(image);
+    bool broken = true, acted = false;
+    vm.on_violation([&broken](unsigned, unsigned) {
+        if (broken) throw std::runtime_error("log full");
+    });
+    vm.set_check("EV_u", [](void*) { return true; });
+    vm.set_action("EV_u", [&acted](void*) { acted = true; });
+    try {
+        vm.step();
+        std::printf("hook no-throw\n");
+    } catch (const CallbackError& error) {
+        report("hook", error);
+    }
+    std::printf("hook states=%u,%u violations=%u acted=%d\n", unsigned(vm.states()[0]), unsigned(vm.states()[1]),
+                unsigned(vm.violations()), acted ? 1 : 0);
+    broken = false;
+    const std::vector<unsigned> next = vm.step();
+    std::printf("hook next-step=%u states=%u,%u acted=%d\n", unsigned(next.size()), unsigned(vm.states()[0]),
+                unsigned(vm.states()[1]), acted ? 1 : 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: callback_errors IMAGE.svm\n");
+    if (argc != 3) {
+        std::fprintf(stderr, "usage: callback_errors IMAGE.svm HOOK.svm\n");
         return 2;
     }
     const swarmvm::Image image = swarmvm::Image::load(argv[1]);
@@ -175,5 +201,6 @@ int main(int argc, char** argv) {
     throwing_action(image, false);
     binding_forms(image);
     rebinding_check(image);
+    throwing_hook(swarmvm::Image::load(argv[2]));
     return 0;
 }

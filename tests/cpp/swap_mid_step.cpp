@@ -47,8 +47,12 @@ void load_in_violation_hook(const swarmvm::Image& first, const swarmvm::Image& s
     try {
         vm.step();
         std::printf("hook no-throw\n");
-    } catch (const std::logic_error& error) {
-        std::printf("hook %s\n", error.what());
+    } catch (const swarmvm::CallbackError& error) {     // nesting the load's std::logic_error
+        try {
+            std::rethrow_if_nested(error);
+        } catch (const std::logic_error& cause) {
+            std::printf("hook %s: %s\n", error.kind().c_str(), cause.what());
+        }
     }
 }
 

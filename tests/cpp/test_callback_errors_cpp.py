@@ -7,6 +7,7 @@ import subprocess
 from pathlib import Path
 
 from checkout import EXAMPLE
+from conformance.cases import HOOKED
 from conformance.cpp_harness import FLAGS
 from swarmvm.pipeline import compile_inputs
 from swarmvm.runtime import RUNTIME_CPP
@@ -17,9 +18,12 @@ PROGRAM = Path(__file__).resolve().parent / "callback_errors.cpp"
 def test_throwing_callbacks_follow_the_python_policy(tmp_path):
     image, exe = tmp_path / "energy_worker.svm", tmp_path / "callback_errors"
     image.write_bytes(compile_inputs([str(EXAMPLE)]).image)
+    hooked = tmp_path / "hooked.yaml"
+    hooked.write_text(HOOKED)
+    (tmp_path / "hooked.svm").write_bytes(compile_inputs([str(hooked)]).image)
     subprocess.run(["g++", *FLAGS, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
                    capture_output=True)
-    lines = subprocess.run([str(exe), str(image)], check=True, capture_output=True, text=True,
+    lines = subprocess.run([str(exe), str(image), str(tmp_path / "hooked.svm")], check=True, capture_output=True, text=True,
                            timeout=30).stdout.splitlines()
     assert lines == [
         "check event=EV_lowEnergy kind=check what=the check of EV_lowEnergy threw: sensor unplugged "
@@ -40,4 +44,7 @@ def test_throwing_callbacks_follow_the_python_policy(tmp_path):
         "while the VM polls its checks cause=a check cannot bind a check while the VM polls its checks",
         "rebind unchanged=1",
         "rebind next-step-same=1",
+        "hook event=EV_u kind=violation hook what=the violation hook of EV_u threw: log full cause=log full",
+        "hook states=0,0 violations=1 acted=0",
+        "hook next-step=2 states=0,1 acted=1",
     ]

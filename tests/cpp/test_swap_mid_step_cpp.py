@@ -57,4 +57,4 @@ def test_an_action_that_loads_ends_the_step_alike_in_cpp_and_python(tmp_path):
     # Then the second image: x (1), y (2, no move in state 0: a violation), b (0).
     assert lines[:2] == ["step fired=2 states=0 violations=0", "step fired=1,2,0 states=1 violations=1"]
     assert lines[:STEPS] == python_lines(first, second)
-    assert lines[STEPS:] == ["hook the violation hook cannot load an image: load it after step() returns"]
+    assert lines[STEPS:] == ["hook violation hook: the violation hook cannot load an image: load it after step() returns"]

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from conformance.cases import SWAP_FIRST, SWAP_SECOND
+from conformance.cases import HOOKED, SWAP_FIRST, SWAP_SECOND
 from swarmvm.pipeline import compile_inputs
 
 CORPUS = Path(__file__).parent.parent / "corpus"
@@ -255,6 +255,25 @@ def test_an_action_that_loads_an_image_ends_the_sct_exact_step(vm, tmp_path):
     sct.add_callback(sct.EV["EV_y"], None, lambda _d: True, None)
     sct.run_step()
     assert sct.last_events == sct.input_buffer == [sct.EV["EV_x"]] and sct.vm.image.num_events == 3
+
+
+def test_a_violation_hook_that_raises_ends_the_step_there(vm, tmp_path):
+    """As in C++ (tests/cpp/test_callback_errors_cpp.py, the same model): CallbackError names the
+    hook; the supervisors after the violating one have not moved, the action has not run."""
+    broken, acted = [True], []
+
+    def hook(_event, _sup):
+        if broken[0]:
+            raise OSError("log full")
+    machine = vm.VM(image_of(tmp_path, HOOKED), on_violation=hook)
+    machine.bind("u", check=lambda _d: True, action=lambda _d: acted.append("u"))
+    with pytest.raises(vm.CallbackError, match="the violation hook of EV_u raised OSError: log full") as caught:
+        machine.step()
+    assert (caught.value.event, caught.value.kind) == ("EV_u", "violation hook")
+    assert isinstance(caught.value.__cause__, OSError)
+    assert machine.states == [0, 0] and machine.violations == 1 and acted == []
+    broken[0] = False
+    assert len(machine.step()) == 2 and machine.states == [0, 1] and acted == ["u"]
 
 
 def test_the_violation_hook_may_not_load_an_image(vm, tmp_path):
