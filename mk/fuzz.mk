@@ -4,7 +4,10 @@
 # over `gen` for every target with the code compiled, libFuzzer with AddressSanitizer and
 # UndefinedBehaviorSanitizer over the C runtime's reader and step. Corpora grow in
 # $(FUZZ_DIR)/<fuzzer>/corpus from run to run; findings land in $(FUZZ_DIR)/<fuzzer>/findings
-# and fail the run. `make test` runs the short run (tests/fuzz/test_fuzz_short.py).
+# and fail the run. Then the trust boundary's generative tests (user text through every
+# target, the escaping functions, the readers, output under injected faults: docs/security.md)
+# with hypothesis's long profile. `make test` runs the short run of both
+# (tests/fuzz/test_fuzz_short.py; the same tests with the ci profile).
 
 FUZZ_SECONDS ?= 600
 FUZZ_DIR ?= $(BUILD)/fuzz
@@ -14,3 +17,7 @@ FUZZERS ?=
 
 fuzz: setup
 	$(PYTHON) tests/fuzz/campaign.py --seconds $(FUZZ_SECONDS) --work $(FUZZ_DIR) $(FUZZERS)
+	HYPOTHESIS_PROFILE=long $(PYTHON) -m pytest $(TRUST_BOUNDARY_TESTS)
+
+TRUST_BOUNDARY_TESTS = tests/security tests/properties/test_hostile_text.py tests/inputs/test_output_faults.py \
+	tests/inputs/test_readers_generative.py tests/cli/test_terminal_escaping.py

@@ -14,7 +14,7 @@ trap 'rm -rf "$work"' EXIT
 "$editable/bin/python" -m build --wheel --outdir "$work/dist" "$root" >"$work/build.log" 2>&1 \
   || { cat "$work/build.log"; exit 1; }
 python3 -m venv "$work/venv"
-"$work/venv/bin/python" -m pip install -q --disable-pip-version-check "$work"/dist/swarmvm-*.whl pytest
+"$work/venv/bin/python" -m pip install -q --disable-pip-version-check "$work"/dist/swarmvm-*.whl pytest hypothesis
 echo "wheel-check: installed $(basename "$work"/dist/swarmvm-*.whl) into a fresh venv"
 
 example="$root/examples/energy_worker/supervisor.yaml"
