@@ -17,7 +17,7 @@ import html as _html
 import re
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-_IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]+\Z")
+_IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]*\Z")
 # Characters a comment keeps as they are in every language swarmvm writes comments in (C, C++,
 # Python, Make, CMake, YAML, .gen, XML): none can end or nest a comment (``*/``, ``/*``, and
 # ``--`` is split), continue a line (a trailing backslash), form a trigraph (``??/``) or end a
@@ -149,8 +149,8 @@ def identifier(text: str) -> str:
 
 
 def identifier_part(text: str) -> str:
-    """``text`` when it can continue an identifier (ASCII letters, digits, ``_``; an event's
-    callback stem after ``on_``, say), else UnsafeText."""
+    """``text`` when it can continue an identifier (ASCII letters, digits, ``_``, or nothing: the
+    event ``EV_`` has the empty name, and ``on_`` its callback), else UnsafeText."""
     if not isinstance(text, str) or not _IDENTIFIER_PART.match(text):
         raise UnsafeText("%s cannot be part of an identifier" % terminal(repr(text)))
     return text

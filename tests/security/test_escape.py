@@ -91,6 +91,9 @@ def test_an_identifier_is_validated_not_escaped(bad):
 
 def test_identifier_parts_and_numbers():
     assert escape.identifier_part("1abc") == "1abc" and escape.identifier("EV_x") == "EV_x"
+    assert escape.identifier_part("") == ""       # the event EV_ (tests/corpus/nadzoru2/flipflop_S.yaml)
+    with pytest.raises(escape.UnsafeText):
+        escape.identifier_part("a-b")
     assert escape.number(7, 3) == "7  "
     for bad in ("7", True, 7.0):
         with pytest.raises(escape.UnsafeText):
