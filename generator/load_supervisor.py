@@ -27,14 +27,36 @@ INTEGER = re.compile(r"[0-9]+\Z")
 PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
 
 
+class DuplicateKey(yaml.YAMLError):
+    """A mapping gives ``key`` twice: at line ``first``, again at line ``line`` (1-based)."""
+
+    def __init__(self, key: str, line: int, first: int) -> None:
+        super().__init__("key %r given twice" % key)
+        self.key, self.line, self.first = key, line, first
+
+
 class _NoAliasLoader(yaml.BaseLoader):
-    """YAML with every scalar a string, and no aliases: a supervisor file never needs one, and
-    nested aliases ("billion laughs") would make a small file expand to an enormous one."""
+    """YAML with every scalar a string, no aliases and no key given twice: a supervisor file
+    never needs an alias, and nested aliases ("billion laughs") would make a small file expand
+    to an enormous one; a second value for a key would otherwise silently replace the first."""
 
     def compose_node(self, parent, index):
         if self.check_event(yaml.AliasEvent):
             raise yaml.composer.ComposerError(None, None, "aliases (*name) are not accepted", self.peek_event().start_mark)
         return super().compose_node(parent, index)
+
+    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
+        """The mapping, once no scalar key of it comes twice (every scalar is a string here, so
+        ``a`` and ``"a"`` are the same key); DuplicateKey otherwise. A list or mapping as a key
+        is PyYAML's own error (unhashable)."""
+        first_line: dict = {}
+        for key_node, _ in node.value:
+            if isinstance(key_node, yaml.ScalarNode):
+                line = key_node.start_mark.line + 1
+                if key_node.value in first_line:
+                    raise DuplicateKey(key_node.value, line, first_line[key_node.value])
+                first_line[key_node.value] = line
+        return super().construct_mapping(node, deep)
 
 
 def probability(text):
@@ -114,6 +136,9 @@ def load_supervisor(path):
         doc = yaml.load(text, Loader=_NoAliasLoader)
     except RecursionError:
         raise InputError(name, "", "not a supervisor: lists or mappings nested too deeply")
+    except DuplicateKey as exc:
+        raise InputError(name, show_value(exc.key), "key given twice (first at line %d); a YAML mapping holds each key once"
+                         % exc.first, "line %d" % exc.line)
     except yaml.reader.ReaderError as exc:     # its own message takes two lines
         raise InputError(name, "", "not valid YAML at line %d: character #x%04x is not allowed"
                          % (text.count("\n", 0, exc.position) + 1, exc.character))

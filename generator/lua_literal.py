@@ -5,12 +5,19 @@ only: tables (``{ [k] = v, name = v, v; ... }``), strings in single or double qu
 Lua's escapes, decimal and hexadecimal numbers (a leading minus allowed), ``true``,
 ``false``, ``nil`` and ``--`` comments. Anything else (a call, an operator, a variable) is a
 syntax error: nothing in the file is ever executed. Tables come back as dicts keyed by the
-Lua keys (positional entries get 1, 2, ...)."""
+Lua keys (positional entries get 1, 2, ...).
+
+What a dict cannot hold as Lua means it is refused, never guessed: a key given twice, a table
+as a key (unhashable), a boolean key (Python's ``True`` is the key ``1``), a number literal of
+over MAX_NUMBER_LENGTH characters (``int()`` refuses over 4,300 digits; no coordinate or index
+needs 64), tables nested deeper than MAX_DEPTH."""
 
 import re
 from typing import Any, Dict, Optional, Tuple
 
 MAX_DEPTH = 32
+MAX_NUMBER_LENGTH = 64      # characters of one number literal, sign excluded
+SHOWN = 40                  # characters of a token or key quoted in a message
 
 TOKEN = re.compile(r"""
     (?P<space>\s+|--[^\n]*)
@@ -30,6 +37,13 @@ class LuaSyntaxError(ValueError):
     def __init__(self, line: int, message: str):
         super().__init__("line %d: %s" % (line, message))
         self.line, self.message = line, message
+
+
+def _shown(value: Any) -> str:
+    """``value`` quoted for a one-line message, cut at SHOWN characters: a token or a key may
+    be a string of a megabyte."""
+    text = repr(value)
+    return text if len(text) <= SHOWN else text[:SHOWN - 3] + "..."
 
 
 def _unescape(body: str, line: int) -> str:
@@ -81,7 +95,7 @@ class _Parser:
     def take(self, value: Optional[str] = None):
         kind, text, line = self.tokens[self.pos]
         if value is not None and text != value:
-            raise LuaSyntaxError(line, "expected %r, found %r" % (value, text or "end of file"))
+            raise LuaSyntaxError(line, "expected %r, found %s" % (value, _shown(text) if text else "end of file"))
         self.pos += 1
         return kind, text, line
 
@@ -90,17 +104,21 @@ class _Parser:
         if text == "{":
             return self.table(depth + 1, line)
         if text == "-" and self.peek()[0] == "number":
-            return -self.number(self.take()[1])
+            return -self.number(self.take()[1], line)
         if kind == "number":
-            return self.number(text)
+            return self.number(text, line)
         if kind == "string":
             return _unescape(text[1:-1], line)
         if kind == "name" and text in CONSTANTS:
             return CONSTANTS[text]
-        raise LuaSyntaxError(line, "expected a value, found %r" % (text or "end of file"))
+        raise LuaSyntaxError(line, "expected a value, found %s" % (_shown(text) if text else "end of file"))
 
     @staticmethod
-    def number(text: str):
+    def number(text: str, line: int):
+        """The number a literal denotes, once its length is bounded (``int()`` of thousands of
+        digits is a ValueError; a huge exponent is a float's infinity, as in Lua)."""
+        if len(text) > MAX_NUMBER_LENGTH:
+            raise LuaSyntaxError(line, "a number of %d characters (at most %d)" % (len(text), MAX_NUMBER_LENGTH))
         if text[:2].lower() == "0x":
             return int(text, 16)
         return float(text) if any(c in text for c in ".eE") else int(text)
@@ -122,13 +140,17 @@ class _Parser:
                 self.pos += 2
             else:
                 key, position = position, position + 1
-            if key is None or key in out:
-                raise LuaSyntaxError(at, "key %r is nil or given twice" % (key,))
+            if key is None or isinstance(key, (dict, bool)):
+                what = "nil" if key is None else "a table" if isinstance(key, dict) else "a boolean"
+                raise LuaSyntaxError(at, "a key must be a string or a number, not %s" % what)
+            if key in out:
+                raise LuaSyntaxError(at, "key %s given twice" % _shown(key))
             out[key] = self.value(depth)
             if self.peek()[1] in (",", ";"):
                 self.take()
             elif self.peek()[1] != "}":
-                raise LuaSyntaxError(self.peek()[2], "expected ',' or '}', found %r" % (self.peek()[1] or "end of file"))
+                found = self.peek()[1]
+                raise LuaSyntaxError(self.peek()[2], "expected ',' or '}', found %s" % (_shown(found) if found else "end of file"))
         self.take("}")
         return out
 
@@ -140,8 +162,8 @@ def parse_lua_table(text: str) -> Dict[Any, Any]:
         parser.take()
     kind, first, line = parser.take()
     if first != "{":
-        raise LuaSyntaxError(line, "expected a table constructor '{', found %r" % (first or "end of file"))
+        raise LuaSyntaxError(line, "expected a table constructor '{', found %s" % (_shown(first) if first else "end of file"))
     table = parser.table(1, line)
     if parser.peek()[0] != "end":
-        raise LuaSyntaxError(parser.peek()[2], "unexpected %r after the table" % parser.peek()[1])
+        raise LuaSyntaxError(parser.peek()[2], "unexpected %s after the table" % _shown(parser.peek()[1]))
     return table

@@ -8,6 +8,7 @@ The file is parsed as data by :mod:`swarmvm.lua_literal`, never executed."""
 
 from .automaton import AutomatonBuilder, AutomatonFile
 from .errors import InputError, read_input
+from .load_supervisor import show_value
 from .lua_literal import LuaSyntaxError, parse_lua_table
 
 
@@ -27,14 +28,14 @@ def _list(path, table, key):
 def _flag(path, entry, field, key, default=None):
     value = entry.get(field, default)
     if not isinstance(value, bool):
-        raise InputError(path, "%s.%s" % (key, field), "expected true or false, got %r" % (value,))
+        raise InputError(path, "%s.%s" % (key, field), "expected true or false, got %s" % show_value(value))
     return value
 
 
 def _index(path, entry, field, key, size):
     value = entry.get(field)
     if not isinstance(value, int) or isinstance(value, bool) or not 1 <= value <= size:
-        raise InputError(path, "%s.%s" % (key, field), "expected an index in 1..%d, got %r" % (size, value))
+        raise InputError(path, "%s.%s" % (key, field), "expected an index in 1..%d, got %s" % (size, show_value(value)))
     return value
 
 

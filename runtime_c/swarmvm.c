@@ -637,16 +637,18 @@ static SVM_COLD uint8_t mask_beyond(const uint8_t *image, uint8_t source, uint16
 }
 
 /* Every index the step follows must stay inside the image, every event mask inside the image's
- * events: check them once here. Supervisor and state records are
- * walked in order (the states of supervisor s follow those of s - 1), so no record offset is
- * multiplied out. */
+ * events: check them once here, with what else the compiler always writes (docs/image-format.md):
+ * each supervisor starts in its state 0, a state has transitions only on its supervisor's
+ * events, and each state's successors follow the previous state's, the last ending at T (no
+ * target is read by two states or by none). Supervisor and state records are walked in order
+ * (the states of supervisor s follow those of s - 1), so no record offset is multiplied out. */
 static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
 {
     const uint8_t *h = lay->header;
     uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
     uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
     uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
-    uint16_t expected_first = 0, alphabet = (uint16_t)SUPS_AT(m);
+    uint16_t expected_first = 0, expected_succ = 0, alphabet = (uint16_t)SUPS_AT(m);
     const uint8_t *st = image + lay->states_at, *targets = image + lay->targets_at;
     if (mask_beyond(image, source, CONTROLLABLE_AT, m, e) || mask_beyond(image, source, (uint16_t)PUBLIC_AT(m), m, e)) {
         return SVM_ERR_LAYOUT;
@@ -656,22 +658,24 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
         rd_copy(record, image, source, (uint16_t)(alphabet + m), 6u);    /* first, count, initial */
         first = le16(record);
         count = le16(record + 2);
-        if (first != expected_first || count == 0 || le16(record + 4) >= count || count > total_states - first ||
+        if (first != expected_first || count == 0 || le16(record + 4) != 0u || count > total_states - first ||
             mask_beyond(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
         for (q = 0; q < count; q++, st += STATE_SIZE(m)) {
             uint16_t defined = 0, succ, k;
             const uint8_t *target;
-            uint8_t i, byte = 0;
+            uint8_t i, byte = 0, foreign = 0;
             for (i = 0; i < m; i++) {
                 byte = PEEK(source, st + i);
+                foreign |= (uint8_t)(byte & (uint8_t)~PEEK(source, image + alphabet + i));
                 defined = (uint16_t)(defined + popcount8(byte));
             }
             succ = (uint16_t)(PEEK(source, st + m) | (unsigned)PEEK(source, st + m + 1) << 8);
-            if (beyond_events(byte, e) || succ > total_trans || defined > total_trans - succ) {
+            if (foreign != 0u || beyond_events(byte, e) || succ != expected_succ || defined > total_trans - succ) {
                 return SVM_ERR_LAYOUT;
             }
+            expected_succ = (uint16_t)(succ + defined);
             target = targets + (succ << (width - 1u));
             for (k = 0; k < defined; k++, target += width) {
                 unsigned local = PEEK(source, target);
@@ -685,7 +689,7 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
         }
         expected_first = (uint16_t)(first + count);
     }
-    return expected_first == total_states ? SVM_OK : SVM_ERR_LAYOUT;
+    return expected_first == total_states && expected_succ == total_trans ? SVM_OK : SVM_ERR_LAYOUT;
 }
 
 /* Whether `c` may be part of an event name: letters, digits and '_' (the input languages' rule). */
@@ -693,6 +697,29 @@ static uint8_t name_char(uint8_t c)
 {
     return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
 }
+
+#if SVM_WITH_NAMES
+/* Whether the name whose length byte is at `name` equals one of the names from `first` (the
+ * section's start) up to it. The compiler writes each event's name once; a name given twice
+ * would make binding by name ambiguous. Only in builds that read names (SVM_WITH_NAMES): the
+ * Kilobot's compiled-in build never reads them, and the check would cost its VM core about
+ * 110 B of its 4 kB budget (docs/image-format.md). */
+static SVM_COLD uint8_t name_repeats(uint8_t source, const uint8_t *first, const uint8_t *name)
+{
+    for (; first != name; first += 1u + PEEK(source, first)) {
+        uint8_t k = PEEK(source, first);
+        if (k == PEEK(source, name)) {
+            while (k != 0u && PEEK(source, first + k) == PEEK(source, name + k)) {
+                k--;
+            }
+            if (k == 0u) {
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+#endif
 
 /* Past every image: a section end beyond the checksum (lengths are at most 65535). */
 #define PAST_END 0xFFFFu
@@ -732,8 +759,10 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
     states = le16(h + SVM_AT_NUM_STATES);
     trans = le16(h + SVM_AT_NUM_TRANSITIONS);
     m = h[SVM_AT_MASK_BYTES];
+    /* (The order section comes only with the names: the compiler writes it with them.) */
     if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || (uint8_t)(h[SVM_AT_STATE_WIDTH] - 1u) > 1u ||
-        m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u) {
+        m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u ||
+        (flags & (SVM_FLAG_ORDER | SVM_FLAG_NAMES)) == SVM_FLAG_ORDER) {
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
@@ -761,6 +790,11 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
                                   PAST_END) {
                 return SVM_ERR_LAYOUT;
             }
+#if SVM_WITH_NAMES
+            if (name_repeats(source, image + lay->names_at, image + pos)) {
+                return SVM_ERR_LAYOUT;
+            }
+#endif
             for (pos++; pos < name_end; pos++) {
                 if (!name_char(rd_raw(image, source, pos))) {
                     return SVM_ERR_LAYOUT;
@@ -772,9 +806,15 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
         if (section_end(section_end(pos, e, 1u, end), states, 2u, end) == PAST_END) {
             return SVM_ERR_LAYOUT;
         }
-        for (i = 0; i < e; i++, pos++) {
-            if (rd_raw(image, source, pos) >= e) {
+        for (i = 0; i < e; i++, pos++) {      /* each event index below e, once: a permutation */
+            uint8_t index = rd_raw(image, source, pos), k;
+            if (index >= e) {
                 return SVM_ERR_LAYOUT;
+            }
+            for (k = 0; k < i; k++) {
+                if (PEEK(source, image + pos - 1u - k) == index) {
+                    return SVM_ERR_LAYOUT;
+                }
             }
         }
         pos = section_end(pos, states, 2u, end);

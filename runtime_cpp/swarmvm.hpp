@@ -367,8 +367,17 @@ inline void check_header(const std::uint8_t* data, std::size_t size) {
     }
 }
 
-// The sections end exactly at the checksum and every name holds name characters only
-// (ErrorCode::layout otherwise).
+// Whether the name whose length byte is at `name` equals one of the names from `first` (the
+// section's start) up to it: the compiler writes each event's name once.
+inline bool name_repeats(const std::uint8_t* first, const std::uint8_t* name) {
+    for (; first != name; first += 1 + first[0]) {
+        if (first[0] == name[0] && std::equal(first + 1, first + 1 + first[0], name + 1)) return true;
+    }
+    return false;
+}
+
+// The sections end exactly at the checksum, every name holds name characters only and is given
+// once, the order section's event indices are each event once (ErrorCode::layout otherwise).
 inline void check_sections(const std::uint8_t* data, std::size_t end) {
     const unsigned m = data[kAtMaskBytes], n_events = data[kAtNumEvents];
     const std::uint8_t flags = data[kAtFlags];
@@ -380,10 +389,14 @@ inline void check_sections(const std::uint8_t* data, std::size_t end) {
                            std::to_string(end));
     }
     if (flags & kFlagNames) {
+        const std::size_t names_at = pos;
         for (unsigned e = 0; e < n_events; ++e) {
             if (pos >= end) throw layout_error("names section ends at event " + std::to_string(e));
             const std::size_t name_end = pos + 1 + data[pos];
             if (name_end > end) throw layout_error("event " + std::to_string(e) + "'s name runs past the checksum");
+            if (name_repeats(data + names_at, data + pos)) {
+                throw layout_error("event " + std::to_string(e) + "'s name is an earlier event's: each is given once");
+            }
             for (++pos; pos < name_end; ++pos) {
                 if (!name_char(data[pos])) {
                     throw layout_error("event " + std::to_string(e) +
@@ -395,8 +408,11 @@ inline void check_sections(const std::uint8_t* data, std::size_t end) {
     if (flags & kFlagOrder) {
         const std::size_t n_states = u16_at(data, kAtNumStates);
         if (pos + n_events + 2 * n_states > end) throw layout_error("order section runs past the checksum");
+        std::vector<bool> seen(n_events);
         for (unsigned e = 0; e < n_events; ++e, ++pos) {
             if (data[pos] >= n_events) throw layout_error("order section names an event index beyond the events");
+            if (seen[data[pos]]) throw layout_error("order section names an event index twice: not a permutation");
+            seen[data[pos]] = true;
         }
         pos += 2 * n_states;
     }
@@ -417,8 +433,9 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
     const unsigned n_trans = detail::u16_at(data, kAtNumTransitions);
     const unsigned width = data[kAtStateWidth];
     const unsigned mask_bytes = data[kAtMaskBytes];
+    // (The order section comes only with the names: the compiler writes it with them.)
     if ((width != 1 && width != 2) || mask_bytes != (n_events + 7) / 8 || n_events == 0 || n_sups == 0 ||
-        (flags & ~kKnownFlags) != 0) {
+        (flags & ~kKnownFlags) != 0 || (flags & (kFlagOrder | kFlagNames)) == kFlagOrder) {
         throw detail::layout_error("header inconsistent (events " + std::to_string(n_events) + ", mask bytes " +
                                    std::to_string(mask_bytes) + ", state width " + std::to_string(width) +
                                    ", supervisors " + std::to_string(n_sups) + ", flags " + detail::hex4(flags) + ")");
@@ -466,12 +483,16 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
     if (beyond_events(image.controllable) || beyond_events(image.public_events)) {
         throw detail::layout_error("event masks name events beyond the " + std::to_string(n_events) + " events");
     }
-    unsigned expected_first = 0;
+    // Besides the indices, what the compiler always writes: each supervisor starts in its state 0,
+    // a state has transitions only on its supervisor's events, each state's successors follow the
+    // previous state's and the last ends at the last target (no target read twice or never).
+    unsigned expected_first = 0, expected_succ = 0;
     for (unsigned s = 0; s < n_sups; ++s) {
         const unsigned first = image.sup_first_state[s], count = image.sup_num_states[s];
-        if (first != expected_first || count == 0 || count > n_states - first || image.sup_initial[s] >= count) {
+        if (first != expected_first || count == 0 || count > n_states - first || image.sup_initial[s] != 0) {
             throw detail::layout_error("supervisor " + std::to_string(s) +
-                                       "'s states do not follow the previous supervisor's inside the state section");
+                                       "'s states do not follow the previous supervisor's inside the state section "
+                                       "from its initial state 0");
         }
         if (beyond_events(image.sup_alphabet[s])) {
             throw detail::layout_error("supervisor " + std::to_string(s) + "'s alphabet names events beyond the " +
@@ -482,8 +503,17 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
                 throw detail::layout_error("state " + std::to_string(g) + " has transitions on events beyond the " +
                                            std::to_string(n_events) + " events");
             }
+            if (image.sup_alphabet[s].complement_in(image.state_defined[g]).any()) {
+                throw detail::layout_error("state " + std::to_string(g) + " has transitions on events outside its "
+                                           "supervisor's alphabet");
+            }
+            if (image.state_first[g] != expected_succ) {
+                throw detail::layout_error("state " + std::to_string(g) + "'s successors do not follow the previous "
+                                           "state's");
+            }
             unsigned successors = 0;
             image.state_defined[g].for_each([&](unsigned) { ++successors; });
+            expected_succ += successors;
             if (image.state_first[g] + successors > n_trans) {
                 throw detail::layout_error("state " + std::to_string(g) + " has successors outside the target section");
             }
@@ -498,6 +528,10 @@ inline Image Image::parse(const std::uint8_t* data, std::size_t size) {
     if (expected_first != n_states) {
         throw detail::layout_error("supervisors hold " + std::to_string(expected_first) + " states, the header says " +
                                    std::to_string(n_states));
+    }
+    if (expected_succ != n_trans) {
+        throw detail::layout_error("states have " + std::to_string(expected_succ) + " successors, the header says " +
+                                   std::to_string(n_trans) + " transitions");
     }
     return image;
 }

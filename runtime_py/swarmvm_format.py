@@ -12,6 +12,7 @@ robot too.
 
 import binascii
 import enum
+import functools
 import itertools
 import operator
 import struct
@@ -90,7 +91,8 @@ class ErrorCode(enum.IntEnum):
     MAGIC = 2           # not MAGIC
     VERSION = 3         # a format version this reader does not read
     CRC = 4             # checksum mismatch
-    LAYOUT = 5          # header inconsistent, sections do not end at L-2, an index or name out of range
+    LAYOUT = 5          # header inconsistent, sections do not end at L-2, an index or name out of range, or
+                        # else what the compiler never writes (a name given twice, ...: docs/image-format.md)
     LIMITS = 6          # more events/supervisors/states than the build's SVM_MAX_*
     NAMES = 7           # swap: a bound event's name is missing from the new image
     EVENT = 8           # unknown event index, or a check bound to a controllable event
@@ -273,6 +275,8 @@ class Image:
                                 % (events, mask_bytes, width, supervisors))
         if flags & ~KNOWN_FLAGS:
             raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (flags, KNOWN_FLAGS))
+        if flags & FLAG_ORDER and not flags & FLAG_NAMES:
+            raise _layout_error("image has an order section without names: the compiler writes it only with them")
         probs = bool(flags & FLAG_PROBS)
         end = size - CRC_SIZE
         targets_at = (HEADER_SIZE + 2 * mask_bytes + supervisors * (mask_bytes + SUPERVISOR_RECORD.size)
@@ -284,6 +288,7 @@ class Image:
         order_size = events + 2 * states if flags & FLAG_ORDER else 0
         if flags & FLAG_NAMES:
             names, pos = _names(raw, pos, end - order_size, end, events)
+            _check_names_unique(names)
         if flags & FLAG_ORDER:
             order, state_order, pos = _order(raw, pos, end, events, states)
         if pos != end:
@@ -300,45 +305,59 @@ class Image:
         outside = ~((1 << self.num_events) - 1)
         if (self.controllable | self.public) & outside:
             raise _layout_error("image event masks name events beyond the %d events" % self.num_events)
-        expected_first = 0
+        expected_first = expected_succ = 0
         for s in range(self.num_supervisors):
             first, count = self.sup_first_state[s], self.sup_num_states[s]
-            if first != expected_first or count == 0 or self.sup_initial[s] >= count or count > num_states - first:
+            if first != expected_first or count == 0 or self.sup_initial[s] != 0 or count > num_states - first:
                 raise _layout_error("image supervisor %d: states %d..%d (initial %d) do not follow the previous "
-                                    "supervisor's inside the %d states" % (s, first, first + count - 1,
-                                                                          self.sup_initial[s], num_states))
+                                    "supervisor's inside the %d states from its initial state 0"
+                                    % (s, first, first + count - 1, self.sup_initial[s], num_states))
             if self.sup_alphabet[s] & outside:
                 raise _layout_error("image supervisor %d's alphabet names events beyond the %d events" % (s, self.num_events))
             for g in range(first, first + count):      # find the first defect, to name it
                 defined, succ = self.state_defined[g], self.state_first[g]
                 if defined & outside:
                     raise _layout_error("image state %d has transitions on events beyond the %d events" % (g, self.num_events))
+                if defined & ~self.sup_alphabet[s]:
+                    raise _layout_error("image state %d has transitions on events outside its supervisor %d's alphabet"
+                                        % (g, s))
+                if succ != expected_succ:
+                    raise _layout_error("image state %d's successors start at target %d, not right after the previous "
+                                        "state's (%d)" % (g, succ, expected_succ))
                 successors = bin(defined).count("1")
                 if succ + successors > num_transitions:
                     raise _layout_error("image state %d has successors outside the target section" % g)
+                expected_succ = succ + successors
                 for t in range(succ, succ + successors):
                     if self.targets[t] >= count:
                         raise _layout_error("image transition %d leads outside its supervisor %d" % (t, s))
             expected_first = first + count
         if expected_first != num_states:
             raise _layout_error("image supervisors hold %d states, the header says %d" % (expected_first, num_states))
+        if expected_succ != num_transitions:
+            raise _layout_error("image states have %d successors, the header says %d transitions: targets no state "
+                                "reaches" % (expected_succ, num_transitions))
 
     def _indices_fit(self, num_states: int, num_transitions: int) -> bool:
         """Whether the image passes _check_indices's checks, in a few C-level passes over the
-        whole image for the usual layout (each state's successors right after the previous
-        state's); False otherwise, and _check_indices looks supervisor by supervisor and state
-        by state for the first defect, to name it. (A count of 0 fails the initial state's check.)"""
+        whole image; False otherwise, and _check_indices looks supervisor by supervisor and state
+        by state for the first defect, to name it. (A count of 0 fails the check of the first
+        states: two supervisors would start at the same state.)"""
         counts = self.sup_num_states
-        if any(map(operator.ge, self.sup_initial, counts)):
+        if any(self.sup_initial) or 0 in counts:
             return False
         bounds = [0, *itertools.accumulate(counts)]
         if bounds.pop() != num_states or bounds != self.sup_first_state:
             return False
         if (self.controllable | self.public | max(self.sup_alphabet) | max(self.state_defined)) >> self.num_events:
             return False
-        ends = [*itertools.accumulate(map(int.bit_count, self.state_defined), initial=self.state_first[0])]
+        defined = self.state_defined
+        if any(functools.reduce(operator.or_, defined[f:f + c]) & ~alphabet
+               for f, c, alphabet in zip(bounds, counts, self.sup_alphabet)):
+            return False
+        ends = [*itertools.accumulate(map(int.bit_count, defined), initial=0)]
         last = ends.pop()
-        if last > num_transitions or ends != self.state_first:
+        if last != num_transitions or ends != self.state_first:
             return False
         # Only a supervisor with no more states than the largest target a state follows can have
         # one outside it: usually none or few are looked at one by one.
@@ -404,14 +423,30 @@ def _walk_names(raw: bytes, pos: int, end: int, events: int) -> Tuple[List[str],
     return names, pos
 
 
+def _check_names_unique(names: List[str]) -> None:
+    """ImageError (LAYOUT) naming the first name given twice: the compiler writes each event's
+    name once, and a name given twice would make binding by name ambiguous."""
+    if len(set(names)) == len(names):
+        return
+    first: Dict[str, int] = {}
+    for event, name in enumerate(names):
+        if name in first:
+            raise _layout_error("image event %d's name %r is event %d's too: each name is given once"
+                                % (event, name, first[name]))
+        first[name] = event
+
+
 def _order(raw: bytes, pos: int, end: int, events: int, states: int) -> Tuple[List[int], List[int], int]:
     """The order section at ``pos``: each event's index in the source file, each state's
     number there, and the position after it; ImageError (LAYOUT) when it runs past the
-    checksum at ``end`` or names an event index beyond the events."""
+    checksum at ``end`` or its event indices are not each of 0..E-1 once (a permutation)."""
     after = pos + events + 2 * states
     if after > end:
         raise _layout_error("image order section runs past the checksum at byte %d" % end)
     order = list(raw[pos:pos + events])
     if max(order) >= events:
         raise _layout_error("image order section names an event index beyond the %d events" % events)
+    if len(set(order)) != events:
+        raise _layout_error("image order section names an event index twice: not a permutation of the %d events"
+                            % events)
     return order, list(struct.unpack_from("<%dH" % states, raw, pos + events)), after

@@ -82,7 +82,7 @@ def seeds(fuzzer: str) -> dict:
 
 
 # libFuzzer dictionaries (tests/fuzz/dicts): the keys and tokens of each input language.
-DICTIONARIES = {"yaml": "yaml", "xml": "xml", "xmd": "xml", "nza": "nza", "gen": "gen", "script": "script"}
+DICTIONARIES = {"yaml": "yaml", "xml": "xml", "xmd": "xml", "nza": "nza", "lua": "nza", "gen": "gen", "script": "script"}
 
 
 def command(fuzzer: str, work: Path) -> list:

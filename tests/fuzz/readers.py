@@ -21,6 +21,7 @@ from typing import Callable, Dict
 
 from swarmvm import api
 from swarmvm.errors import InputError
+from swarmvm.lua_literal import LuaSyntaxError, parse_lua_table
 from swarmvm.runtime import RUNTIME_C, image_format, python_vm
 
 F = image_format()
@@ -153,11 +154,24 @@ def script(data: bytes) -> None:
         refused(exc)
 
 
+def lua_literal(data: bytes) -> None:
+    """The Lua literal reader under the ``.nza`` reader (swarmvm.lua_literal), alone and so
+    reached by every input rather than only those that decode and frame as an automaton: a
+    table, or its LuaSyntaxError (the ``.nza`` reader turns that into one InputError line)."""
+    try:
+        table = parse_lua_table(data.decode("utf-8", "surrogateescape"))
+    except LuaSyntaxError as exc:
+        assert "\n" not in exc.message, "a refusal of more than one line: %r" % exc.message
+        return
+    assert isinstance(table, dict)
+
+
 READERS: Dict[str, Callable[[bytes], None]] = {
     "yaml": _supervisor(".yaml"),
     "xml": _supervisor(".xml"),
     "xmd": _supervisor(".xmd"),
     "nza": _supervisor(".nza"),
+    "lua": lua_literal,
     "gen": _supervisor(".gen"),
     "svm_runtime": svm_runtime,
     "svm": svm_swarmvm,
@@ -172,7 +186,7 @@ def seeds(reader: str) -> Dict[str, bytes]:
         return {p.stem + ".svm": api.compile_model([str(p)]).ordered_image for p in sorted(CORPUS.glob("*/*.yaml"))}
     if reader == "script":
         return {"energy_worker.txt": api.make_script([str(SCRIPT_SUPERVISOR)], 20, 1).encode("ascii")}
-    suffix = "." + reader
+    suffix = ".nza" if reader == "lua" else "." + reader
     found = sorted(p for folder in (CORPUS, ROOT / "tests" / "models", ROOT / "examples")
                    for p in folder.rglob("*" + suffix) if p.is_file())
     return {"%02d_%s" % (k, p.name): p.read_bytes() for k, p in enumerate(found)}

@@ -15,7 +15,7 @@ from fuzz import campaign, readers
 from swarmvm.cli import main
 
 CASES = sorted(p for p in readers.REGRESSIONS.glob("*/*") if p.is_file())
-SUFFIXES = {"yaml": ".yaml", "xml": ".xml", "xmd": ".xmd", "nza": ".nza", "gen": ".gen", "svm": ".svm",
+SUFFIXES = {"yaml": ".yaml", "xml": ".xml", "xmd": ".xmd", "nza": ".nza", "lua": ".nza", "gen": ".gen", "svm": ".svm",
             "svm_runtime": ".svm", "script": ".txt"}
 
 

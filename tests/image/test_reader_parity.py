@@ -128,6 +128,29 @@ def _pad_bit(t):
     return 1 << t.num_events
 
 
+def _consecutive_states_with_successors(t):
+    """Two states g, g + 1 of one supervisor, each with transitions."""
+    for first, count in zip(t.sup_first_state, t.sup_num_states):
+        for g in range(first, first + count - 1):
+            if t.state_defined[g] and t.state_defined[g + 1]:
+                return g
+    raise AssertionError("needs two consecutive states with transitions")
+
+
+def _overlapping_successors(t):
+    """State g + 1 reads state g's targets: every index stays in range, no state reads the
+    targets after them."""
+    g = _consecutive_states_with_successors(t)
+    t.state_first[g + 1] = t.state_first[g]
+
+
+def _defined_outside_alphabet(t):
+    """A supervisor's alphabet loses an event one of its states has a transition on."""
+    g = _first_successor_state(t)
+    s = max(k for k, first in enumerate(t.sup_first_state) if first <= g)
+    t.sup_alphabet[s] &= ~(t.state_defined[g] & -t.state_defined[g])
+
+
 def _names_at(raw):
     image = F.Image.parse(raw)
     return len(raw) - F.CRC_SIZE - sum(1 + len(n) for n in image.names)
@@ -135,12 +158,19 @@ def _names_at(raw):
 
 def good_images():
     """Images every reader accepts: corpus images with and without names, with probabilities,
-    with 8 events (no unused mask bits), an empty name, two-byte state numbers."""
+    with 8 events (no unused mask bits), an empty name, two-byte state numbers,
+    with the order section (and another permutation in it)."""
     names = ["energy_worker", "network_worker", "probabilistic_example", "flipflop_S", "uav", "capbot_demo"]
     images = {name: _corpus(name) for name in names}
     images["energy_worker_no_names"] = _corpus("energy_worker", names=False)
     images["energy_worker_wide_states"] = _edited(images["energy_worker"], _set(state_width=2))
     images["probabilistic_no_names"] = _corpus("probabilistic_example", names=False)
+    ordered = compile_inputs([str(next(CORPUS.glob("*/energy_worker.yaml")))]).ordered_image
+    images["energy_worker_ordered"] = ordered
+    swapped = bytearray(ordered)        # another permutation of the events in the order section
+    at = len(ordered) - F.CRC_SIZE - ordered[F.OFFSETS["num_events"]] - 2 * F.Header.unpack(ordered).num_states
+    swapped[at:at + 2] = swapped[at + 1], swapped[at]
+    images["energy_worker_order_permuted"] = _reseal(bytes(swapped))
     return images
 
 
@@ -242,7 +272,39 @@ def bad_images():
                                   E.LAYOUT),
     }
     assert events % 8 != 0
+    cases.update(uncompiled_images())
     return cases
+
+
+def uncompiled_images():
+    """{case: (image, LAYOUT)}: images every check above passes (sound sections, indices in range,
+    a valid checksum) but that the compiler could not have written: a name given twice (next to
+    each other, or apart), an order section without names or whose event indices are not a
+    permutation, a supervisor starting elsewhere than its state 0, a transition on an event
+    outside its supervisor's alphabet, states whose successors overlap or leave targets no state
+    reads. The readers of before issue 23 accepted each (a duplicate name passed `swarmvm check`)."""
+    good = _corpus("energy_worker")
+    t = _tables(good)
+    compiled = compile_inputs([str(next(CORPUS.glob("*/energy_worker.yaml")))])
+    ordered = F.Image.parse(compiled.ordered_image)
+    order = (list(ordered.order), list(ordered.state_order))
+
+    def names(edit):
+        return lambda t: t.__dict__.update(names=edit(list(t.names)))
+
+    return {
+        "name_given_twice": (_edited(good, names(lambda n: [n[0], n[0], *n[2:]])), E.LAYOUT),
+        "name_given_twice_last": (_edited(good, names(lambda n: [*n[:-1], n[-2]])), E.LAYOUT),
+        "name_given_twice_apart": (_edited(good, names(lambda n: [*n[:-1], n[0]])), E.LAYOUT),
+        "empty_name_twice": (_edited(good, names(lambda n: ["", "", *n[2:]])), E.LAYOUT),
+        "order_without_names": (pack(t, "test", names=False, order=order), E.LAYOUT),
+        "order_event_twice": (pack(t, "test", order=([order[0][0], *order[0][:-1]], order[1])), E.LAYOUT),
+        "sup_initial_not_zero": (_edited(good, _item("sup_initial", 0, 1)), E.LAYOUT),
+        "defined_outside_alphabet": (_edited(good, _defined_outside_alphabet), E.LAYOUT),
+        "successors_overlap": (_edited(good, _overlapping_successors), E.LAYOUT),
+        "target_no_state_reads": (_edited(good, lambda t: (t.targets.append(0), t.__dict__.update(
+            num_transitions=t.num_transitions + 1))), E.LAYOUT),
+    }
 
 
 def name_char_images():
@@ -286,12 +348,17 @@ def test_every_reader_gives_the_same_code(readers, tmp_path):
     assert python == expected
     assert c == expected
     assert cpp == expected
-    assert sum(code == E.OK for code in expected.values()) >= 9 + 63     # good images, name characters
+    assert sum(code == E.OK for code in expected.values()) >= 11 + 63    # good images, name characters
 
 
 def test_python_messages_name_the_defect():
     cases = bad_images()
     for name, needle in [("truncated", "length field"), ("magic", "not a swarmvm table image"),
+                         ("name_given_twice", "event 1's name 'atCharger' is event 0's too"),
+                         ("order_without_names", "order section without names"),
+                         ("order_event_twice", "not a permutation"),
+                         ("defined_outside_alphabet", "outside its supervisor 0's alphabet"),
+                         ("target_no_state_reads", "targets no state reaches"),
                          ("version_2", "format version 2"), ("crc_stored", "checksum mismatch"),
                          ("target_out_of_supervisor", "leads outside its supervisor"),
                          ("sup_first_state_gap", "supervisor 1"), ("defined_beyond_events", "beyond the 10 events")]:

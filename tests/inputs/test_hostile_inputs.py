@@ -48,6 +48,11 @@ CASES = {
     "not_utf8.yaml": (b"num_events: 1\n\xff\n", "not UTF-8 text (byte 14)"),
     "superscript_id.xml": (re.sub(r'source="(\d+)"', 'source="²"', XML_PLANT, count=1),
                            "source: transition: expected a non-negative integer id of at most 9 digits, got '²'"),
+    # A key given twice: the last value silently won (issue 23); "x" and x are the same key.
+    "duplicate_key.yaml": (WORKER + '"sup_init_state": [ 1,0,0,0 ]\n',
+                           "sup_init_state: line %d: key given twice (first at line 6)" % (WORKER.count("\n") + 1)),
+    "duplicate_nested_key.yaml": (WORKER + "extra: {a: 1, b: 2, a: 3}\n",
+                                  "a: line %d: key given twice (first at line %d)" % ((WORKER.count("\n") + 1,) * 2)),
 }
 
 
