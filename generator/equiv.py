@@ -10,8 +10,9 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
+from .escape import terminal
 from .model import Model
-from .product import Conjunction, Vector
+from .product import DEFAULT_MAX_STATES, Budget, Conjunction, Vector, events_of
 
 
 @dataclass(frozen=True)
@@ -28,8 +29,10 @@ def _flags(model: Model) -> Dict[str, Tuple[bool, bool]]:
     return {n: (model.controllable[i], model.public[i]) for i, n in enumerate(model.events)}
 
 
-def compare(a: Model, b: Model) -> Optional[Difference]:
-    """None when ``a`` and ``b`` are equivalent, else the first :class:`Difference` found."""
+def compare(a: Model, b: Model, max_states: int = DEFAULT_MAX_STATES) -> Optional[Difference]:
+    """None when ``a`` and ``b`` are equivalent, else the first :class:`Difference` found.
+    The walk visits pairs of product states, one of each side, and is refused (InputError)
+    beyond ``max_states`` pairs: it is the bigger of the two products, or more."""
     fa, fb = _flags(a), _flags(b)
     if set(fa) != set(fb):
         only = sorted(set(fa) ^ set(fb))
@@ -39,21 +42,24 @@ def compare(a: Model, b: Model) -> Optional[Difference]:
             what = "controllable" if fa[name][0] != fb[name][0] else "public"
             return Difference(events=(name,), reason="EV_%s is %s in one set only" % (name, what))
     # Same names, and canonical models sort them: the event indices agree.
-    ca, cb = Conjunction(a), Conjunction(b)
-    start = (tuple(0 for _ in a.supervisors), tuple(0 for _ in b.supervisors))
+    ca, cb = Conjunction.of(a), Conjunction.of(b)
+    budget = Budget(a.source, max_states, "the walk of both conjunctions (this set's and %s's)" % b.source)
+    start = (ca.start, cb.start)
     seen: Dict[Tuple[Vector, Vector], Optional[tuple]] = {start: None}
     queue = deque([start])
     while queue:
         pair = queue.popleft()
-        for event in range(len(a.events)):
-            na, nb = ca.step(pair[0], event), cb.step(pair[1], event)
-            if (na is None) != (nb is None):
-                word = _word(seen, pair) + [event]
-                return Difference(word=tuple(a.events[e] for e in word), allowed_by="A" if nb is None else "B",
-                                  reason="the conjunctions' languages differ")
-            if na is not None and nb is not None and (na, nb) not in seen:
+        enabled_a, enabled_b = ca.enabled(pair[0]), cb.enabled(pair[1])
+        if enabled_a != enabled_b:
+            event = next(events_of(enabled_a ^ enabled_b))
+            return Difference(word=tuple(a.events[e] for e in _word(seen, pair) + [event]),
+                              allowed_by="A" if enabled_a >> event & 1 else "B",
+                              reason="the conjunctions' languages differ")
+        for (event, na), (_, nb) in zip(ca.moves(pair[0]), cb.moves(pair[1])):
+            if (na, nb) not in seen:
                 seen[(na, nb)] = (pair, event)
                 queue.append((na, nb))
+        budget.check(len(seen))
     return None
 
 
@@ -68,7 +74,8 @@ def _word(seen: Dict[Tuple[Vector, Vector], Optional[tuple]], pair) -> List[int]
 
 
 def format_difference(a: str, b: str, difference: Optional[Difference]) -> str:
-    """The verdict of ``swarmvm equiv`` in one or two lines."""
+    """The verdict of ``swarmvm equiv`` in one or two lines (the file names escaped to one line each)."""
+    a, b = terminal(a), terminal(b)
     if difference is None:
         return "equivalent: %s and %s (same events, same language of the conjunction)" % (a, b)
     if not difference.word:

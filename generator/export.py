@@ -6,10 +6,10 @@ is closed; public events in a ``% swarmvm public:`` comment, as libFAUDES has no
 from fractions import Fraction
 from typing import Dict, List
 
-from .errors import InputError
+from .escape import gen_string
 from .model import Model
-from .pictures import picture_files
-from .product import build_product
+from .pictures import drawable_product, picture_files
+from .product import DEFAULT_MAX_STATES
 
 
 def _flat(values) -> str:
@@ -56,28 +56,24 @@ def to_yaml(model: Model) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _quote(name: str) -> str:
-    return '"%s"' % name
-
-
 def to_gen(model: Model, sup: int, name: str) -> str:
     """Local supervisor ``sup`` in libFAUDES' token format (readable by ``faudes.System``)."""
     local = model.supervisors[sup]
     alphabet = []
     for e in sorted(local.alphabet):
-        alphabet.append(_quote(model.events[e]) + (" +C+" if model.controllable[e] else ""))
-    states = " ".join(_quote("s%d" % q) for q in range(len(local.states)))
-    trans = ["%s %s %s" % (_quote("s%d" % q), _quote(model.events[e]), _quote("s%d" % t))
+        alphabet.append(gen_string(model.events[e]) + (" +C+" if model.controllable[e] else ""))
+    states = " ".join(gen_string("s%d" % q) for q in range(len(local.states)))
+    trans = ["%s %s %s" % (gen_string("s%d" % q), gen_string(model.events[e]), gen_string("s%d" % t))
              for q, row in enumerate(local.states) for e, t, _ in row]
-    public = [_quote(model.events[e]) for e in sorted(local.alphabet) if model.public[e]]
+    public = [gen_string(model.events[e]) for e in sorted(local.alphabet) if model.public[e]]
     return "\n".join([
-        '<Generator name=%s ftype="System">' % _quote(name),
+        '<Generator name=%s ftype="System">' % gen_string(name),
         "% " + "written by swarmvm from %s, supervisor %d; every state is marked" % (model.source, sup),
         *(["% swarmvm public: " + " ".join(public)] if public else []),
         "<Alphabet>", *alphabet, "</Alphabet>",
         "<States>", states, "</States>",
         "<TransRel>", *trans, "</TransRel>",
-        "<InitStates>", _quote("s0"), "</InitStates>",
+        "<InitStates>", gen_string("s0"), "</InitStates>",
         "<MarkedStates>", states, "</MarkedStates>",
         "</Generator>", ""])
 
@@ -91,16 +87,13 @@ def gen_files(model: Model, name: str) -> Dict[str, bytes]:
 FORMATS = ("yaml", "gen", "dot", "svg")
 
 
-def export_files(model: Model, name: str, fmt: str, product_limit: int = 200) -> Dict[str, bytes]:
+def export_files(model: Model, name: str, fmt: str, product_limit: int = 200,
+                 max_states: int = DEFAULT_MAX_STATES) -> Dict[str, bytes]:
     """{file name: bytes} of ``model`` in ``fmt``: ``<name>.yaml``; one ``<name>_<i>.gen`` per
     supervisor; or pictures of each supervisor and, when it has at most ``product_limit``
-    states, of their product (``<name>_product``)."""
+    states, of their product (``<name>_product``), found within the ``max_states`` budget."""
     if fmt == "yaml":
         return {name + ".yaml": to_yaml(model).encode()}
     if fmt == "gen":
         return gen_files(model, name)
-    try:
-        product = build_product(model, product_limit)
-    except InputError:                   # too big to be worth a picture
-        product = None
-    return picture_files(model, name, product, svg=fmt == "svg")
+    return picture_files(model, name, drawable_product(model, product_limit, max_states), svg=fmt == "svg")

@@ -1,5 +1,5 @@
 """Graphviz pictures of what runs on the robot: each local supervisor and, up to a size limit,
-the product of all of them (their conjunction).
+the product of all of them (their conjunction), explored under the state budget.
 
 Controllable events are solid edges, uncontrollable ones dashed (the legend says so); the
 initial state has an arrow from a point; public events are bold. Nodes and edges are written in
@@ -11,8 +11,9 @@ import subprocess
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from .errors import InputError
+from .escape import dot_string, dot_text
 from .model import Model
-from .product import Product
+from .product import TRANSITIONS_PER_STATE, Budget, Conjunction, OverBudget, Product, explore
 
 LEGEND = ('  label="%s\\nsolid: controllable   dashed: uncontrollable   bold: public   '
           'arrow from the dot: initial state"; labelloc=b; fontname="Helvetica";')
@@ -24,13 +25,14 @@ def _edge_style(model: Model, event: int) -> str:
 
 
 def _graph(title: str, model: Model, labels: Sequence[str], edges: Sequence[Sequence[Tuple[int, int]]]) -> str:
-    lines = ['digraph "%s" {' % title, "  rankdir=LR;", '  node [shape=circle, fontname="Helvetica"];',
-             '  edge [fontname="Helvetica"];', LEGEND % title, "  init [shape=point];"]
-    lines += ['  q%d [label="%s"];' % (q, label) for q, label in enumerate(labels)]
+    lines = ["digraph %s {" % dot_string(title), "  rankdir=LR;", '  node [shape=circle, fontname="Helvetica"];',
+             '  edge [fontname="Helvetica"];', LEGEND % dot_text(title), "  init [shape=point];"]
+    lines += ["  q%d [label=%s];" % (q, dot_string(label)) for q, label in enumerate(labels)]
     lines.append("  init -> q0;")
     for q, row in enumerate(edges):
         for event, target in row:
-            lines.append('  q%d -> q%d [label="%s", style="%s"];' % (q, target, model.events[event], _edge_style(model, event)))
+            lines.append('  q%d -> q%d [label=%s, style="%s"];' % (q, target, dot_string(model.events[event]),
+                                                                    _edge_style(model, event)))
     lines.append("}")
     return "\n".join(lines) + "\n"
 
@@ -57,6 +59,19 @@ def dot_to_svg(dot: str, where: str) -> bytes:
     if run.returncode != 0:
         raise InputError(where, "dot", "Graphviz failed: %s" % run.stderr.decode(errors="replace").strip())
     return run.stdout
+
+
+def drawable_product(model: Model, product_limit: int, max_states: int) -> Optional[Product]:
+    """The product when it has at most ``product_limit`` states, else None (it is not drawn).
+    Finding out explores at most ``max_states`` states (:class:`Budget`): a ``product_limit``
+    over that budget is refused when the product is bigger than the budget."""
+    try:
+        return explore(Conjunction.of(model), Budget(model.source, min(product_limit, max_states),
+                                                     max_transitions=max_states * TRANSITIONS_PER_STATE))
+    except OverBudget as exc:
+        if exc.figure == "states" and product_limit <= max_states:
+            return None              # over product_limit: too big to be worth a picture
+        raise
 
 
 def picture_files(model: Model, name: str, product: Optional[Product], svg: bool) -> Dict[str, bytes]:

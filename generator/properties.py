@@ -15,10 +15,11 @@ reaches it, so the designer can replay it with ``swarmvm trace``. Definitions (d
   events and cannot change where the robot ends up."""
 
 from dataclasses import dataclass
-from typing import List, Tuple
+from typing import List, Set, Tuple
 
+from .escape import terminal
 from .model import Model
-from .product import Product, build_product
+from .product import DEFAULT_MAX_STATES, Conjunction, Product, build_product, events_of
 
 
 @dataclass(frozen=True)
@@ -61,48 +62,68 @@ def _no_control_again(model: Model, product: Product) -> List[int]:
 
 
 def _ignored_inputs(model: Model, product: Product) -> List[Finding]:
+    """One finding per (event, supervisor), at the first state: an uncontrollable event some
+    holder offers there and the product does not enable."""
+    conjunction = Conjunction.of(model)
+    uncontrollable = sum(1 << e for e, c in enumerate(model.controllable) if not c)
     out, seen = [], set()
     for q, vector in enumerate(product.vectors):
-        for event in range(len(model.events)):
-            if model.controllable[event]:
-                continue
-            holders = [s for s, sup in enumerate(model.supervisors) if event in sup.alphabet]
-            defined = [s for s in holders if any(e == event for e, _, _ in model.supervisors[s].states[vector[s]])]
+        ignored = conjunction.offered(vector) & ~conjunction.enabled(vector) & uncontrollable
+        for event in events_of(ignored):
+            holders = conjunction.holders[event]
+            defined = [s for s in holders if event in conjunction.delta[s][vector[s]]]
             for s in holders:
-                if defined and s not in defined and (event, s) not in seen:
+                if s not in defined and (event, s) not in seen:
                     seen.add((event, s))
                     out.append(Finding("ignored input", "EV_%s: supervisor %d has no transition in state %d (supervisor %d has)"
                                        % (model.events[event], s, vector[s], defined[0]), _names(model, product.word(q))))
     return out
 
 
-def _not_confluent(model: Model, product: Product) -> List[Finding]:
-    """One finding per pair of events, at the first (breadth-first: nearest) state."""
-    out, seen = [], set()
-    for q, row in enumerate(product.edges):
-        after = {e: t for e, t in row if model.controllable[e]}
-        for a in sorted(after):
-            for b in sorted(after):
-                if b <= a or (a, b) in seen:
-                    continue
-                ab = dict(product.edges[after[a]]).get(b)
-                ba = dict(product.edges[after[b]]).get(a)
-                if ab is not None and ba is not None and ab == ba:
-                    continue
-                if ab is None or ba is None:
-                    first, second = (a, b) if ab is None else (b, a)
-                    why = "EV_%s disables EV_%s" % (model.events[first], model.events[second])
-                else:
-                    why = "the two orders end in different states"
-                seen.add((a, b))
-                out.append(Finding("not confluent", "EV_%s or EV_%s: %s" % (model.events[a], model.events[b], why),
-                                   _names(model, product.word(q))))
+def _local_conflicts(model: Model) -> List[List[List[Tuple[int, int]]]]:
+    """Per supervisor and local state, the pairs (a, b), a < b, of controllable events it has
+    transitions on whose local diamond fails: b undefined after a, a after b, or the two orders
+    ending in different states. A product state enabling a and b is not confluent for them
+    exactly when a supervisor holding both has the pair in its local state (a supervisor holding
+    one of them moves the same in either order), so the product is searched for these pairs
+    only, not for every pair of enabled events in every state."""
+    out = []
+    for sup in model.supervisors:
+        delta = [{e: t for e, t, _ in row} for row in sup.states]
+        conflicts = []
+        for moves in delta:
+            mine = sorted(e for e in moves if model.controllable[e])
+            conflicts.append([(a, b) for i, a in enumerate(mine) for b in mine[i + 1:]
+                              if delta[moves[a]].get(b) is None or delta[moves[a]].get(b) != delta[moves[b]].get(a)])
+        out.append(conflicts)
     return out
 
 
-def check_properties(model: Model, limit: int = 1_000_000) -> Report:
-    """Every check of this module on ``model``'s product (at most ``limit`` states)."""
-    product = build_product(model, limit)
+def _not_confluent(model: Model, product: Product) -> List[Finding]:
+    """One finding per pair of events, at the first (breadth-first: nearest) state."""
+    conflicts = _local_conflicts(model)
+    out: List[Finding] = []
+    seen: Set[Tuple[int, int]] = set()
+    for q, vector in enumerate(product.vectors):
+        candidates = {pair for s, local in enumerate(vector) for pair in conflicts[s][local]} - seen
+        after = {e: dict(product.edges[t]) for e, t in product.edges[q] if model.controllable[e]} if candidates else {}
+        for a, b in sorted(pair for pair in candidates if pair[0] in after and pair[1] in after):
+            ab, ba = after[a].get(b), after[b].get(a)
+            if ab is None or ba is None:
+                first, second = (a, b) if ab is None else (b, a)
+                why = "EV_%s disables EV_%s" % (model.events[first], model.events[second])
+            else:
+                why = "the two orders end in different states"
+            seen.add((a, b))
+            out.append(Finding("not confluent", "EV_%s or EV_%s: %s" % (model.events[a], model.events[b], why),
+                               _names(model, product.word(q))))
+    return out
+
+
+def check_properties(model: Model, max_states: int = DEFAULT_MAX_STATES) -> Report:
+    """Every check of this module on ``model``'s product; InputError when the product is over
+    the budget of ``max_states`` (:class:`swarmvm.product.Budget`), before any check runs."""
+    product = build_product(model, max_states)
     findings = [Finding("deadlock", "no event can occur in product state (%s)" % ",".join(map(str, product.vectors[q])),
                         _names(model, product.word(q)))
                 for q, row in enumerate(product.edges) if not row]
@@ -120,7 +141,7 @@ def check_properties(model: Model, limit: int = 1_000_000) -> Report:
 def format_report(name: str, report: Report, examples: int = 3) -> str:
     """The report as Markdown: per check, the number of findings and the first few, each with
     the shortest event sequence that reaches it."""
-    lines = ["## %s: product of %d state(s)" % (name, report.states)]
+    lines = ["## %s: product of %d state(s)" % (terminal(name), report.states)]     # a name is one line
     for check in CHECKS:
         found = report.of(check)
         lines.append("- %s: %s" % (check, "none" if not found else len(found)))

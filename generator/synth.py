@@ -16,6 +16,7 @@ from .errors import InputError
 from .faudes_bridge import libfaudes, local_from_system, system_from_local
 from .load_automata import load_automata
 from .model import Supervisors
+from .product import DEFAULT_MAX_STATES, Budget, Conjunction, explore, state_bound
 from .synth_script import Step, SynthScript
 
 
@@ -37,16 +38,36 @@ def _self_looped(system: Any, other: Any) -> Any:
     return extended
 
 
-def _apply(step: Step, args: List[Any]) -> Any:
+def _refuse_over_budget(args: List[Any], budget: Budget) -> None:
+    """InputError when the product of the libFAUDES systems ``args`` is over ``budget``, checked
+    before libFAUDES composes them (a libFAUDES call cannot be interrupted). The product of
+    their state counts bounds it; only past the budget is the reachable product explored, here,
+    under the budget. (SupC's arguments, self-looped, compose as a conjunction does: an event
+    outside an automaton's alphabet is never blocked by it.)"""
+    if budget.surely_within(state_bound([system.Size() for system in args])):
+        return
+    factors = [local_from_system(system)[1] for system in args]
+    index = {name: i for i, name in enumerate(sorted(frozenset().union(*(f.alphabet for f in factors))))}
+    explore(Conjunction(len(index), [frozenset(index[e] for e in f.alphabet) for f in factors],
+                        [[{index[t.event]: t.target for t in row} for row in f.states] for f in factors],
+                        tuple(f.initial for f in factors)), budget)
+
+
+def _apply(step: Step, args: List[Any], budget: Budget) -> Any:
+    """``step`` on libFAUDES systems ``args``; each composition (a Sync composes its arguments
+    one at a time, SupC its plant and specification) is sized against ``budget`` first."""
     result = libfaudes().System()
     if step.op == "sync":
+        _refuse_over_budget(args[:2], budget)
         libfaudes().Parallel(args[0], args[1], result)
         for more in args[2:]:
+            _refuse_over_budget([result, more], budget)
             composed = libfaudes().System()
             libfaudes().Parallel(result, more, composed)
             result = composed
     elif step.op == "supc":
         plant, spec = args
+        _refuse_over_budget(args, budget)
         libfaudes().SupCon(_self_looped(plant, spec), _self_looped(spec, plant), result)
     else:
         libfaudes().StateMin(args[0], result)
@@ -65,10 +86,11 @@ def models_by_name(paths: Sequence[str]) -> Dict[str, str]:
 
 
 def synthesise(script: SynthScript, models: Dict[str, str], exports: Sequence[str] = (),
-               minimise: bool = False) -> Supervisors:
+               minimise: bool = False, max_states: int = DEFAULT_MAX_STATES) -> Supervisors:
     """Run ``script`` with ``models`` ({name: automaton file}); return the supervisors named by
     ``exports`` (else the script's ``export``, else every name a SupC assigned), each
-    minimised if ``minimise``. Raises InputError on bad models or a script that fails."""
+    minimised if ``minimise``. Raises InputError on bad models, a script that fails, or a
+    step whose product is over ``max_states`` states (before libFAUDES runs it)."""
     names = sorted(models)
     inputs = load_automata([models[n] for n in names])
     env = {name: system_from_local(local, inputs.controllable) for name, local in zip(names, inputs.supervisors)}
@@ -77,7 +99,8 @@ def synthesise(script: SynthScript, models: Dict[str, str], exports: Sequence[st
         missing = [a for a in step.args if a not in env]
         if missing:
             raise InputError(script.source, missing[0], "neither a model given nor assigned above", "line %d" % step.line)
-        result = _apply(step, [env[a] for a in step.args])
+        result = _apply(step, [env[a] for a in step.args], Budget(
+            script.source, max_states, "the product of %s" % ", ".join(step.args), where="line %d" % step.line))
         if result.Size() == 0:
             raise InputError(script.source, step.target, "the result is empty (no %s exists)" % (
                 "supervisor" if step.op == "supc" else "behaviour"), "line %d" % step.line)
@@ -94,7 +117,7 @@ def synthesise(script: SynthScript, models: Dict[str, str], exports: Sequence[st
             raise InputError(script.source, "export", "%s is not a model or a result of the script" % name)
         system = env[name]
         if minimise:
-            system = _apply(Step(name, "min", (name,), 0), [system])
+            system = _apply(Step(name, "min", (name,), 0), [system], Budget(script.source, max_states))
         declared, local = local_from_system(system)
         supervisors.append(local)
         events.extend(e for e in sorted(declared) if e not in events)

@@ -19,7 +19,7 @@ def model(path):
 
 
 def accepts(m, word):
-    vector, conjunction = tuple(0 for _ in m.supervisors), Conjunction(m)
+    vector, conjunction = tuple(0 for _ in m.supervisors), Conjunction.of(m)
     for name in word:
         vector = conjunction.step(vector, m.events.index(name))
         if vector is None:
