@@ -18,6 +18,7 @@ Only linked ELF files are read (pyelftools), so the figures are what the device 
 """
 
 import json
+import os
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -73,7 +74,8 @@ class Footprint:
 
 
 class FootprintError(Exception):
-    """An ELF that cannot be measured (no table image in it, unknown machine)."""
+    """An ELF that cannot be measured (no table image in it, unknown machine, a section or
+    symbol that lies outside what it belongs to)."""
 
 
 # Robot runtimes in runtime_c/ that run the VM as a program (kilolib's setup/loop, messages):
@@ -100,6 +102,30 @@ def _memory_kind(section):
     if not flags & SH_FLAGS.SHF_WRITE:
         return "flash"
     return "ram" if section["sh_type"] == "SHT_NOBITS" else "both"
+
+
+def _check_section(path, section, file_size):
+    """FootprintError unless a memory section with contents lies within the file: its size is
+    counted and its bytes read (an image's header), so one that runs past the end would give
+    figures, or a read, that the file does not hold."""
+    if section["sh_type"] != "SHT_NOBITS" and section["sh_offset"] + section["sh_size"] > file_size:
+        raise FootprintError("%s: section %s (%d B at offset %d) runs past the end of the file (%d B)"
+                             % (path, section.name, section["sh_size"], section["sh_offset"], file_size))
+
+
+def _check_symbol(path, elf, symbol):
+    """FootprintError unless a sized symbol lies inside the section it names: its size is
+    counted in that section's bucket, and an image's bytes are read from there."""
+    index = symbol["st_shndx"]
+    if index >= elf.num_sections():
+        raise FootprintError("%s: symbol %s names section %d of %d" % (path, symbol.name, index, elf.num_sections()))
+    section = elf.get_section(index)
+    thumb = symbol["st_info"]["type"] == "STT_FUNC"      # an ARM Thumb function's address has bit 0 set
+    start = (symbol["st_value"] & ~1 if thumb else symbol["st_value"]) - section["sh_addr"]
+    if start < 0 or start + symbol["st_size"] > section["sh_size"]:
+        raise FootprintError("%s: symbol %s (%d B at 0x%x) lies outside its section %s (%d B at 0x%x)"
+                             % (path, symbol.name, symbol["st_size"], symbol["st_value"], section.name,
+                                section["sh_size"], section["sh_addr"]))
 
 
 def _symbols(elf):
@@ -131,7 +157,7 @@ def _is_image(elf, symbol):
     section = elf.get_section(symbol["st_shndx"])
     if section["sh_type"] == "SHT_NOBITS":
         return False
-    start = symbol["st_value"] - section["sh_addr"]
+    start = symbol["st_value"] - section["sh_addr"]         # inside the section: _check_symbol
     header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
     return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
 
@@ -140,6 +166,7 @@ def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
     """The Footprint of one linked ELF; target from its machine, supervisor from its name."""
     core_names, core_files = runtime_names(runtime)
     with open(path, "rb") as handle:
+        file_size = os.fstat(handle.fileno()).st_size
         elf = ELFFile(handle)
         machine = elf["e_machine"]
         if target is None:
@@ -151,13 +178,16 @@ def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
         for index, section in enumerate(elf.iter_sections()):
             kind = _memory_kind(section)
             kinds[index] = kind
+            if kind is not None:
+                _check_section(path, section, file_size)
             if kind in ("flash", "both"):
                 result.flash.total += section["sh_size"]
             if kind in ("ram", "both"):
                 result.ram.total += section["sh_size"]
         images = 0
         for symbol, local_file in _symbols(elf):
-            kind = kinds.get(symbol["st_shndx"])
+            _check_symbol(path, elf, symbol)
+            kind = kinds[symbol["st_shndx"]]
             if kind is None:
                 continue
             if _is_image(elf, symbol):

@@ -1,17 +1,9 @@
-"""Render a target's templates and write them out, all or nothing.
-
-Every file is rendered in memory first; only when all succeeded are they written, each
-through a temporary file and an atomic rename. Files a target marks ``keep`` (controller
-skeletons the user edits) are written only when absent."""
-
-import os
-import tempfile
-from pathlib import Path
+"""Render a target's templates, in memory: swarmvm.output writes the files, all or nothing."""
 
 import jinja2
 
 from . import __version__
-from .errors import InputError
+from .escape import FILTERS
 from .image import FORMAT, digest
 from .naming import callback_stem, event_names
 from .runtime import TEMPLATES
@@ -40,6 +32,7 @@ def _template_source(name):
 ENV = jinja2.Environment(
     loader=jinja2.FunctionLoader(_template_source), undefined=jinja2.StrictUndefined,
     keep_trailing_newline=True, trim_blocks=True, lstrip_blocks=True, autoescape=False)
+ENV.filters.update(FILTERS)
 ENV.filters["c_bytes"] = _c_bytes
 ENV.filters["hex_lines"] = _hex_lines
 ENV.filters["stem"] = callback_stem
@@ -66,60 +59,3 @@ def context(compiled, **extra):
 
 def render(template, values):
     return ENV.get_template(template).render(**values).encode("utf-8")
-
-
-def write_outputs(outdir, files):
-    """``files``: {relative path: (bytes, keep)}. Returns the paths written, sorted.
-
-    All or nothing: every file is first written to a temporary file beside its destination,
-    and only when all of them are written are they renamed into place, so a failure (an
-    unwritable folder, a destination that is a folder, a full disk) leaves no partial output
-    and no temporary file. A folder or file that cannot be made is an InputError naming it.
-
-    Nothing is written through or over a symbolic link: ``outdir``, the folders below it and
-    every file to be written must not be one (a link planted there, or left by a user, would
-    send the output elsewhere or be silently replaced); such a path is an InputError naming it."""
-    outdir = Path(outdir)
-    staged = []
-    try:
-        for rel in sorted(files):
-            data, keep = files[rel]
-            path = outdir / rel
-            if keep and path.exists():
-                continue
-            _refuse_links(outdir, Path(rel))
-            if path.is_dir():
-                raise InputError(str(path), "-o", "is a folder, not a file that can be written")
-            staged.append((_stage(path, data), path))
-        for temp, path in staged:
-            os.replace(temp, path)
-    except OSError as exc:
-        raise InputError(str(exc.filename or outdir), "-o", "cannot write (%s)" % exc.strerror)
-    finally:
-        for temp, _ in staged:
-            if os.path.exists(temp):
-                os.unlink(temp)
-    return [str(path) for _, path in staged]
-
-
-def _refuse_links(outdir, rel):
-    """InputError naming the first of ``outdir``, the folders of ``rel`` below it and ``rel``
-    itself that is a symbolic link (checked without following it)."""
-    for depth in range(len(rel.parts) + 1):
-        path = outdir.joinpath(*rel.parts[:depth])
-        if path.is_symlink():
-            raise InputError(str(path), "-o", "is a symbolic link: swarmvm does not write through or over one")
-
-
-def _stage(path, data):
-    """``data`` in a new temporary file in ``path``'s folder (made if missing); its name."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temp = tempfile.mkstemp(dir=str(path.parent), prefix=".swarmvm-")
-    try:
-        with os.fdopen(handle, "wb") as out:
-            out.write(data)
-        os.chmod(temp, 0o644)
-    except OSError:
-        os.unlink(temp)
-        raise
-    return temp

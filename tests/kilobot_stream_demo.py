@@ -29,7 +29,7 @@ from conformance import c_harness  # noqa: E402
 from kilolib_build import kilolib_dir  # noqa: E402
 from swarmvm.image import chunks  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.render import write_outputs  # noqa: E402
+from swarmvm.output import write_outputs  # noqa: E402
 from swarmvm.naming import callback_stem  # noqa: E402
 from swarmvm.runtime import python_vm  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402

@@ -16,7 +16,7 @@ from pathlib import Path
 from types import ModuleType
 
 from swarmvm.pipeline import compile_inputs
-from swarmvm.render import write_outputs
+from swarmvm.output import write_outputs
 from swarmvm.runtime import python_vm
 from swarmvm.targets import generate
 

@@ -7,9 +7,11 @@ runtime's own object file. Limits must fail the command with status 1 and one li
 
 import json
 import re
+import struct
 import subprocess
 
 import pytest
+from elftools.elf.elffile import ELFFile
 
 from conformance.cases import batch, SUPERVISORS
 from swarmvm import footprint
@@ -151,3 +153,64 @@ def test_a_file_that_is_no_elf_is_one_line_naming_it(kind, tmp_path):
     result = swarmvm_footprint(path)
     assert result.returncode == 2 and result.stderr.count("\n") == 1
     assert result.stderr.startswith("swarmvm: error: %s: " % path)
+
+
+def image_elf(folder):
+    """A small Kilobot ELF holding energy_worker's table image as an object `swarmvm_image`
+    (avr-gcc alone: no kilolib, no make)."""
+    image = batch(corpus_path("energy_worker")).image
+    source = folder / "energy_worker.c"
+    source.write_text("const unsigned char swarmvm_image[%d] __attribute__((used)) = {%s};\n"
+                      "int main(void) { return swarmvm_image[0]; }\n" % (len(image), ", ".join(map(str, image))))
+    path = folder / "energy_worker.elf"
+    subprocess.run(["avr-gcc", "-mmcu=atmega328p", "-Os", str(source), "-o", str(path)], check=True)
+    assert footprint.measure(path).flash.tables == len(image)
+    return path
+
+
+def patch_image_symbol(path, field, value):
+    """Overwrite a field of the ELF32 entry of `swarmvm_image` (st_value, st_shndx) or of the
+    section header of its section (sh_offset), in place."""
+    with open(path, "rb") as handle:
+        elf = ELFFile(handle)
+        table = elf.get_section_by_name(".symtab")
+        index, symbol = next((i, s) for i, s in enumerate(table.iter_symbols()) if s.name == "swarmvm_image")
+        section = elf.get_section(symbol["st_shndx"])
+        entry = table["sh_offset"] + index * table["sh_entsize"]
+        header = elf["e_shoff"] + symbol["st_shndx"] * elf["e_shentsize"]
+        where = {"st_value": (entry + 4, "<I"), "st_shndx": (entry + 14, "<H"), "sh_offset": (header + 16, "<I")}
+        values = dict(symbol.entry, **section.header, e_shnum=elf["e_shnum"], size=path.stat().st_size)
+    offset, layout = where[field]
+    data = bytearray(path.read_bytes())
+    struct.pack_into(layout, data, offset, value(values))
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.parametrize("field, value, reason", [
+    ("st_value", lambda v: v["sh_addr"] + v["sh_size"] + 16, "lies outside its section .data"),
+    ("st_value", lambda v: v["sh_addr"] + v["sh_size"] - 100, "lies outside its section .data"),
+    ("st_value", lambda v: v["sh_addr"] - 8, "lies outside its section .data"),
+    ("st_shndx", lambda v: v["e_shnum"] + 3, "names section"),
+    ("sh_offset", lambda v: v["size"] - 8, "runs past the end of the file"),
+], ids=["image_past_its_section", "image_overhanging_its_section", "image_before_its_section",
+        "no_such_section", "section_past_the_end_of_the_file"])
+def test_an_elf_whose_symbols_or_sections_lie_outside_is_one_line(field, value, reason, tmp_path):
+    """The table image's symbol past its section gave a traceback (struct.error); one overhanging
+    its section, or a section whose bytes are not in the file, gave figures the file does not
+    hold. Each is now one line naming the file, exit status 2."""
+    path = image_elf(tmp_path)
+    patch_image_symbol(path, field, value)
+    result = swarmvm_footprint(path)
+    assert result.returncode == 2 and result.stdout == "" and result.stderr.count("\n") == 1, result.stderr
+    assert result.stderr.startswith("swarmvm: error: %s: " % path) and reason in result.stderr
+
+
+def test_json_onto_a_folder_is_one_line(tmp_path):
+    """`--json FOLDER` traced back (an InputError the command did not catch), after the report."""
+    path = image_elf(tmp_path)
+    folder = tmp_path / "report"
+    folder.mkdir()
+    result = swarmvm_footprint(path, "--json", folder)
+    assert result.returncode == 2 and result.stdout == "" and result.stderr == (
+        "swarmvm: error: %s: --json: is a folder, not a file that can be written\n" % folder)
+    assert list(folder.iterdir()) == []

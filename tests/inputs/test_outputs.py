@@ -1,6 +1,10 @@
 """Where the output cannot be written: one line naming the path and `-o`, exit status 2, and
-nothing written (no partial output, no temporary file left behind)."""
+nothing written (no partial output, no temporary file left behind). What happens when a file
+operation fails half way, or a signal comes, is tests/inputs/test_output_faults.py."""
 
+import os
+import socket
+import stat
 from pathlib import Path
 
 import pytest
@@ -24,7 +28,7 @@ def test_gen_into_a_file_is_one_line(tmp_path):
     blocker = tmp_path / "out"
     blocker.write_text("mine")
     status, output = run("gen", EXAMPLE, "--target", "c", "-o", str(blocker))
-    assert status == 2 and output == "swarmvm: error: %s: -o: cannot write (File exists)\n" % blocker
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a regular file, not a folder\n" % blocker
     assert blocker.read_text() == "mine"
 
 
@@ -50,6 +54,59 @@ def test_a_failing_gen_writes_nothing(target, tmp_path):
     assert status == 2 and output == "swarmvm: error: %s: -o: is a folder, not a file that can be written\n" % (
         out / blocked)
     assert every_file(out) == sorted(["swarmvm_sub", blocked])
+
+
+def make_special(kind, path):
+    """A character device (a private /dev/null: the real one is never put at risk), a FIFO or
+    a socket at ``path``; the socket's bound handle, to keep it alive."""
+    if kind == "character device":
+        try:
+            os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        except PermissionError:
+            pytest.skip("making a device node needs root")
+    elif kind == "FIFO":
+        os.mkfifo(path)
+    else:
+        bound = socket.socket(socket.AF_UNIX)
+        bound.bind(str(path))
+        return bound
+    return None
+
+
+@pytest.mark.parametrize("kind", ["character device", "FIFO", "socket"])
+def test_pack_onto_a_device_fifo_or_socket_is_refused(kind, tmp_path):
+    """`pack -o /dev/null`-like: one line, exit 2, and the special file is still there, untouched
+    (it was replaced by a regular file)."""
+    special = tmp_path / "x.svm"
+    bound = make_special(kind, special)
+    before = os.lstat(special)
+    status, output = run("pack", EXAMPLE, "-o", str(special))
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a %s, not a file that can be written\n" % (special, kind)
+    after = os.lstat(special)
+    assert (after.st_mode, after.st_ino, after.st_rdev) == (before.st_mode, before.st_ino, before.st_rdev)
+    assert every_file(tmp_path) == ["x.svm"]
+    if bound is not None:
+        bound.close()
+
+
+def test_gen_into_a_device_is_refused(tmp_path):
+    device = tmp_path / "out"
+    make_special("character device", device)
+    status, output = run("gen", EXAMPLE, "--target", "c", "-o", str(device))
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a character device, not a folder\n" % device
+    assert stat.S_ISCHR(os.lstat(device).st_mode) and every_file(tmp_path) == ["out"]
+
+
+@pytest.mark.parametrize("target, kept", [("c", "supervisor_controller.c"), ("python", "supervisor_controller.py")])
+def test_a_folder_where_the_controller_goes_is_refused(target, kept, tmp_path):
+    """The controller skeleton is a file gen keeps when it exists; a folder in its place was
+    skipped silently (and the build failed later): now refused, and nothing written."""
+    out = tmp_path / "out"
+    (out / kept).mkdir(parents=True)
+    status, output = run("gen", EXAMPLE, "--target", target, "-o", str(out))
+    assert status == 2 and output == "swarmvm: error: %s: -o: is a folder, not a file that can be written\n" % (
+        out / kept)
+    assert every_file(out) == [kept]
 
 
 @pytest.mark.parametrize("link", ["folder", "file", "dangling"])

@@ -20,7 +20,7 @@ import pytest
 
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.pipeline import compile_inputs
-from swarmvm.render import write_outputs
+from swarmvm.output import write_outputs
 from swarmvm.runtime import RUNTIME_PY_DIR
 from swarmvm.targets import generate
 
