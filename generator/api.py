@@ -2,22 +2,31 @@
 
 The command line (``swarmvm.cli``) only parses options, calls these and prints; scripts,
 notebooks and other tools call them directly. Bad input raises :class:`InputError` (one line
-naming file, key and place); nothing here writes a file unless its name says so."""
+naming file, key and place); nothing here writes a file unless its name says so.
+
+Errors (docs/api.md): every public function checks its arguments first (one rule per parameter,
+:func:`swarmvm.arguments.checked`). An argument of the wrong type (a str where a list of paths
+is expected, a ``Path`` where a str is) raises TypeError: the calling program is wrong. A value
+the function cannot use (no file, a count out of range, nan, an unknown target, format or mode,
+a file name holding NUL) raises InputError naming the parameter, as bad input on the command
+line does; so does anything wrong in or about a file (missing, unreadable, malformed)."""
 
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
 from . import footprint as fp
-from . import properties, script
+from . import pipeline, properties, script
+from .arguments import checked, file_name, file_names, flag, instance, integer, number, one_of, optional, text, texts
 from .equiv import compare, format_difference
 from .errors import InputError, read_input
-from .export import export_files
+from .export import FORMATS, export_files
 from .model import Model
 from .naming import file_stem
-from .pipeline import Compiled, compile_inputs, compile_spec, load
+from .pipeline import Compiled, compile_inputs, compile_spec
+from .product import DEFAULT_MAX_STATES, TRANSITIONS_PER_STATE
 from .properties import format_report
-from .render import write_outputs
+from .output import write_outputs
 from .runtime import python_vm
 from .script import read_script_rows
 from .synth import models_by_name, synthesise
@@ -26,14 +35,23 @@ from .targets import TARGETS, generate
 from .user_files import Drift, drift
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
-           "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "make_script", "trace",
-           "measure_footprint", "check_properties", "equivalent", "export", "write_export", "synthesise_models",
-           "TARGETS"]
+           "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "script_lines", "make_script",
+           "trace", "measure_footprint", "check_properties", "equivalent", "export", "write_export",
+           "synthesise_models", "TARGETS", "DEFAULT_MAX_STATES", "TRANSITIONS_PER_STATE"]
 
 if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
     from runtime_py.swarmvm_vm import Image
 
 _vm = python_vm()
+
+# The rules of parameters several functions share (swarmvm.arguments).
+_NAME = optional(text)
+_TARGET = one_of(TARGETS, "target")
+_MAX_STATES = integer(1)
+_SEED = integer(0, 0xFFFFFFFF)                     # the VM's 32-bit generator (swarmvm.options.SEED)
+_SYNTH_FORMATS = ("yaml", "gen")
+
+load = checked(paths=file_names)(pipeline.load)
 
 
 @dataclass(frozen=True)
@@ -47,12 +65,14 @@ class CheckRow:
     bytes: int
 
 
+@checked(inputs=file_names, name=_NAME, names=flag)
 def compile_model(inputs: Sequence[str], name: str | None = None, names: bool = True) -> Compiled:
     """Load, validate, canonicalise, build tables and pack the image of one supervisor set
     (one supervisor.yaml, or Nadzoru 2 XML automata)."""
     return compile_inputs(list(inputs), name=name, names=names)
 
 
+@checked(data=instance((bytes, bytearray, memoryview), "bytes"), source=text)
 def parse_image(data: bytes, source: str = "<image>") -> "Image":
     """A table image from bytes, checked (magic, version, checksum, bounds)."""
     try:
@@ -61,28 +81,36 @@ def parse_image(data: bytes, source: str = "<image>") -> "Image":
         raise InputError(source, "image", str(exc))
 
 
+@checked(path=file_name)
 def read_image(path: str) -> "Image":
     """A table image (``.svm``) from a file, checked like :func:`parse_image`."""
     return parse_image(read_input(path), path)
 
 
-def check(paths: Sequence[str]) -> tuple[list[CheckRow], list[str]]:
-    """Validate each file (supervisor or ``.svm`` image): its row, and the models' warnings."""
+@checked(paths=file_names, target=optional(_TARGET), name=_NAME)
+def check(paths: Sequence[str], target: str | None = None, name: str | None = None) -> tuple[list[CheckRow], list[str]]:
+    """Validate each file (supervisor or ``.svm`` image): its row, and the models' warnings.
+    With ``target``, each supervisor must also pass that target's own rules (its code is
+    rendered in memory, as ``gen`` would with ``name``, and nothing is written)."""
     rows, warnings = [], []
     for path in paths:
-        name = Path(path).name
+        file = Path(path).name
         if path.endswith(".svm"):
             image = read_image(path)
-            rows.append(CheckRow(name, image.num_events, image.num_supervisors, len(image.state_defined),
+            rows.append(CheckRow(file, image.num_events, image.num_supervisors, len(image.state_defined),
                                  len(image.targets), len(image.raw)))
             continue
         spec = load([path])
-        warnings += compile_spec(spec, [path]).model.warnings
+        compiled = compile_spec(spec, [path], name=name)
+        if target is not None:
+            generate(compiled, target)
+        warnings += compiled.model.warnings
         events, supervisors, states, transitions = spec.counts()
-        rows.append(CheckRow(name, events, supervisors, states, transitions, spec.size_bytes))
+        rows.append(CheckRow(file, events, supervisors, states, transitions, spec.size_bytes))
     return rows, warnings
 
 
+@checked(inputs=file_names, output=file_name, names=flag)
 def write_image(inputs: Sequence[str], output: str, names: bool = True) -> Compiled:
     """Compile and write the table image to ``output`` (atomically)."""
     compiled = compile_model(inputs, names=names)
@@ -91,6 +119,7 @@ def write_image(inputs: Sequence[str], output: str, names: bool = True) -> Compi
     return compiled
 
 
+@checked(compiled=instance(Compiled, "a Compiled"), target=_TARGET, specs=texts)
 def learned_pairs(compiled: Compiled, target: str, specs: Sequence[str]) -> list[dict[str, str]]:
     """``YES/NO`` specifications of learned checks as [{yes, no}] of bare event names: two
     distinct uncontrollable events of the model, each in one pair only (docs/learning.md)."""
@@ -123,13 +152,12 @@ class Generated:
     drifts: list[Drift]
 
 
+@checked(inputs=file_names, target=_TARGET, outdir=file_name, name=_NAME, learned=texts)
 def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str | None = None,
                     learned: Sequence[str] = ()) -> Generated:
     """Generate a target's sources into ``outdir`` (all files or none). Files ``gen`` owns are
     rewritten; user files that exist are kept, and compared with a fresh skeleton: where they
     drifted, the skeleton is written beside them as ``<file>.new``."""
-    if target not in TARGETS:
-        raise InputError(inputs[0], "--target", "unknown target %r (one of %s)" % (target, ", ".join(sorted(TARGETS))))
     compiled = compile_model(inputs, name=name)
     files = generate(compiled, target, learned_checks=learned_pairs(compiled, target, learned))
     drifts = []
@@ -143,6 +171,7 @@ def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str |
     return Generated(compiled, write_outputs(outdir, files), drifts)
 
 
+@checked(inputs=file_names, steps=integer(1), seed=_SEED, density=number(0, 1))
 def script_lines(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> Iterator[str]:
     """The lines (without newlines) of a reproducible random event script (docs/conformance.md)
     for a supervisor, produced as they are read. The supervisor is compiled first, so bad input
@@ -151,6 +180,7 @@ def script_lines(inputs: Sequence[str], steps: int, seed: int, density: float = 
     return script.script_lines(script.random_rows(compiled.tables, steps, seed, density), compiled.model.events)
 
 
+@checked(inputs=file_names, steps=integer(1), seed=_SEED, density=number(0, 1))
 def make_script(inputs: Sequence[str], steps: int, seed: int, density: float = 0.25) -> str:
     """A reproducible random event script (docs/conformance.md) for a supervisor, as text."""
     return "".join(line + "\n" for line in script_lines(inputs, steps, seed, density))
@@ -162,6 +192,8 @@ def _image_of(inputs: Sequence[str]) -> "Image":
     return _vm.Image.parse(compile_model(inputs).image)
 
 
+@checked(inputs=file_names, script_path=file_name, seed=_SEED, input_mode=one_of(_vm.INPUT_MODES, "input mode"),
+         control=one_of(_vm.CONTROL_MODES, "control mode"), policy=one_of(_vm.POLICIES, "policy"))
 def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: str = "level",
           control: str = "after-inputs", policy: str = "uniform") -> Iterator[str]:
     """The canonical trace lines of the reference VM replaying an event script, produced as
@@ -177,6 +209,7 @@ def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: st
     return _vm.replay_lines(machine, rows)
 
 
+@checked(elfs=file_names)
 def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
     """Flash and static RAM of linked VM images (docs/footprint.md)."""
     from elftools.common.exceptions import ELFError
@@ -191,40 +224,56 @@ def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
     return rows
 
 
-def check_properties(paths: Sequence[str]) -> list[str]:
-    """The design checks of each supervisor set (docs/models.md), one report per file."""
-    return [format_report(path, properties.check_properties(compile_model([path]).model)) for path in paths]
+@checked(paths=file_names, max_states=_MAX_STATES)
+def check_properties(paths: Sequence[str], max_states: int = DEFAULT_MAX_STATES) -> list[str]:
+    """The design checks of each supervisor set (docs/models.md), one report per file; a set
+    whose product is over ``max_states`` states is refused (docs/limits.md)."""
+    return [format_report(path, properties.check_properties(compile_model([path]).model, max_states))
+            for path in paths]
 
 
-def equivalent(a: str, b: str) -> tuple[bool, str]:
+@checked(a=file_name, b=file_name, max_states=_MAX_STATES)
+def equivalent(a: str, b: str, max_states: int = DEFAULT_MAX_STATES) -> tuple[bool, str]:
     """Whether supervisor sets A and B have the same events and conjunction language, and the
-    report (a shortest distinguishing event sequence when not)."""
-    difference = compare(compile_model([a]).model, compile_model([b]).model)
+    report (a shortest distinguishing event sequence when not); refused past ``max_states``
+    pairs of product states explored (docs/limits.md)."""
+    difference = compare(compile_model([a]).model, compile_model([b]).model, max_states)
     return difference is None, format_difference(a, b, difference)
 
 
-def write_export(model: Model, name: str, fmt: str, output: str, product_limit: int = 200) -> list[str]:
+@checked(model=instance(Model, "a Model"), name=text, fmt=one_of(FORMATS, "format"), output=file_name,
+         product_limit=integer(0), max_states=_MAX_STATES)
+def write_export(model: Model, name: str, fmt: str, output: str, product_limit: int = 200,
+                 max_states: int = DEFAULT_MAX_STATES) -> list[str]:
     """Write a model as ``fmt`` (export.FORMATS): yaml to the file ``output``, the others into
     the directory ``output``. The paths written."""
-    files = export_files(model, name, fmt, product_limit)
+    files = export_files(model, name, fmt, product_limit, max_states)
     if fmt == "yaml":
         target = Path(output)
         return write_outputs(target.parent, {target.name: (files[name + ".yaml"], False)})
     return write_outputs(output, {rel: (data, False) for rel, data in files.items()})
 
 
+@checked(inputs=file_names, fmt=one_of(FORMATS, "format"), output=file_name, name=_NAME, product_limit=integer(0),
+         max_states=_MAX_STATES)
 def export(inputs: Sequence[str], fmt: str, output: str, name: str | None = None,
-           product_limit: int = 200) -> tuple[Compiled, list[str]]:
-    """Write a supervisor set as Nadzoru 2 YAML, libFAUDES .gen or Graphviz pictures."""
+           product_limit: int = 200, max_states: int = DEFAULT_MAX_STATES) -> tuple[Compiled, list[str]]:
+    """Write a supervisor set as Nadzoru 2 YAML, libFAUDES .gen or Graphviz pictures (the
+    product drawn up to ``product_limit`` states, explored within ``max_states``)."""
     compiled = compile_model(inputs, name=name)
-    return compiled, write_export(compiled.model, file_stem(compiled.stem, compiled.source), fmt, output, product_limit)
+    return compiled, write_export(compiled.model, file_stem(compiled.stem, compiled.source), fmt, output, product_limit,
+                                  max_states)
 
 
+@checked(models=file_names, script_path=optional(file_name), statements=texts, exports=texts, minimise=flag,
+         fmt=one_of(_SYNTH_FORMATS, "format"), output=file_name, max_states=_MAX_STATES)
 def synthesise_models(models: Sequence[str], script_path: str | None, statements: Sequence[str],
-                      exports: Sequence[str], minimise: bool, fmt: str, output: str) -> list[str]:
+                      exports: Sequence[str], minimise: bool, fmt: str, output: str,
+                      max_states: int = DEFAULT_MAX_STATES) -> list[str]:
     """Local modular synthesis (libFAUDES) from plants and specifications by a script
-    (docs/models.md); writes the supervisor set as ``fmt`` and returns the paths written."""
+    (docs/models.md); writes the supervisor set as ``fmt`` and returns the paths written. A
+    step whose product is over ``max_states`` states is refused before libFAUDES runs it."""
     script = read_synth_script(script_path, statements)
-    spec = synthesise(script, models_by_name(list(models)), exports, minimise)
+    spec = synthesise(script, models_by_name(list(models)), exports, minimise, max_states)
     compiled = compile_spec(spec, [output])       # files named after the output
     return write_export(compiled.model, file_stem(compiled.stem, output, "--output"), fmt, output, 0)

@@ -11,10 +11,12 @@ from typing import Any, Callable
 
 import click
 
-from . import __version__, api
+from . import __version__, api, terminal
 from . import footprint as fp
+from .escape import markdown
 from .export import FORMATS
-from .render import write_outputs
+from .options import SEED, FiniteFloat, OneLineErrors
+from .output import write_outputs
 from .runtime import python_vm
 from .studies import cli as studies_cli
 
@@ -28,17 +30,24 @@ def reports_errors(command: Callable[..., Any]) -> Callable[..., Any]:
         try:
             return command(*args, **kwargs)
         except api.InputError as exc:
-            click.echo("swarmvm: error: %s" % exc, err=True)
-            sys.exit(2)
+            terminal.fail(exc)
     return wrapper
 
 
 def _warn(warnings: Any) -> None:
     for warning in warnings:
-        click.echo("swarmvm: warning: %s" % warning, err=True)
+        terminal.warn(warning)
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+def max_states_option(what: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """``--max-states``, the state budget of the verbs whose work can grow exponentially
+    (docs/limits.md); ``what`` says where the verb spends it."""
+    return click.option("--max-states", default=api.DEFAULT_MAX_STATES, show_default=True, type=click.IntRange(1),
+                        help="Product states (and %d transitions per state) %s may explore; past them it stops "
+                             "with a one-line error (docs/limits.md)." % (api.TRANSITIONS_PER_STATE, what))
+
+
+@click.group(cls=OneLineErrors, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="swarmvm")
 def main() -> None:
     """Compile synthesised supervisors into table-driven VMs for swarm robots."""
@@ -49,22 +58,27 @@ def main() -> None:
 @click.option("--properties", is_flag=True,
               help="Also check each set's design: deadlocks, lost control, dead events, ignored inputs, "
                    "confluence (docs/models.md).")
+@click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)),
+              help="Also apply this target's own rules, as gen would (nothing is written).")
+@click.option("--name", help="With --target: the model name gen would be given (default: the file stem).")
+@max_states_option("the design checks (--properties)")
 @reports_errors
-def check(files: tuple[str, ...], properties: bool) -> None:
+def check(files: tuple[str, ...], properties: bool, target: str | None, name: str | None, max_states: int) -> None:
     """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
     if properties:
-        for report in api.check_properties(files):
-            click.echo(report)
+        for report in api.check_properties(files, max_states=max_states):
+            terminal.lines(report)
         return
-    rows, warnings = api.check(files)
+    rows, warnings = api.check(files, target=target, name=name)
     _warn(warnings)
-    click.echo("| file | events | supervisors | states | transitions | bytes |")
-    click.echo("|---|---|---|---|---|---|")
+    terminal.line("| file | events | supervisors | states | transitions | bytes |")
+    terminal.line("|---|---|---|---|---|---|")
     for r in rows:
-        click.echo("| %s | %d | %d | %d | %d | %d |" % (r.file, r.events, r.supervisors, r.states, r.transitions, r.bytes))
+        terminal.line("| %s | %d | %d | %d | %d | %d |" % (markdown(r.file), r.events, r.supervisors, r.states,
+                                                           r.transitions, r.bytes))
 
 
 @main.command()
@@ -76,7 +90,7 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
     """Write the portable table image of a supervisor (docs/image-format.md)."""
     compiled = api.write_image(inputs, output, names=not no_names)
     _warn(compiled.model.warnings)
-    click.echo("%s: %d bytes" % (output, len(compiled.ordered_image)))     # what write_image wrote
+    terminal.line("%s: %d bytes" % (output, len(compiled.ordered_image)))     # what write_image wrote
 
 
 @main.command()
@@ -99,27 +113,27 @@ def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, lea
     _warn(result.compiled.model.warnings)
     _warn(d.message() for d in result.drifts)
     for path in result.written:
-        click.echo(path)
+        terminal.line(path)
 
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
 @click.option("--steps", default=100, show_default=True, type=click.IntRange(1, 10 ** 7))
-@click.option("--seed", default=1, show_default=True, type=int)
-@click.option("--density", default=0.25, show_default=True, type=click.FloatRange(0, 1),
+@click.option("--seed", default=1, show_default=True, type=SEED)
+@click.option("--density", default=0.25, show_default=True, type=FiniteFloat(0, 1),
               help="Chance that an uncontrollable event occurs in a step.")
 @reports_errors
 def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> None:
     """Print a reproducible random event script for a supervisor."""
     for line in api.script_lines(inputs, steps, seed, density):
-        click.echo(line)
+        terminal.line(line)
 
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
 @click.option("--script", "script_path", required=True, type=click.Path(),
               help="Event script (docs/conformance.md).")
-@click.option("--seed", default=1, show_default=True, type=click.IntRange(0, 0xFFFFFFFF))
+@click.option("--seed", default=1, show_default=True, type=SEED)
 @click.option("--inputs", "input_mode", type=click.Choice(vm.INPUT_MODES), default="level", show_default=True)
 @click.option("--control", type=click.Choice(vm.CONTROL_MODES), default="after-inputs", show_default=True)
 @click.option("--policy", type=click.Choice(["uniform", "first", "weighted"]), default="uniform", show_default=True)
@@ -129,7 +143,7 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 
     INPUTS is a supervisor (.yaml, .xml...) or a table image (.svm)."""
     for line in api.trace(inputs, script_path, seed=seed, input_mode=input_mode, control=control, policy=policy):
-        click.echo(line)
+        terminal.line(line)
 
 
 @main.command()
@@ -141,6 +155,7 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
               help="SRAM a Kilobot image must leave for the stack (of 2,048 bytes).")
 @click.option("--vm-limit", default=100000, show_default=True, type=click.IntRange(0),
               help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
+@reports_errors
 def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, kilobot_stack: int, vm_limit: int) -> None:
     """Report flash and static RAM of linked VM images, split into VM core, tables and application.
 
@@ -150,17 +165,16 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, 
     try:
         rows = api.measure_footprint(elfs)
     except fp.FootprintError as exc:
-        click.echo("swarmvm: error: %s" % exc, err=True)
-        sys.exit(2)
+        terminal.fail(exc)
     limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
-    click.echo(fp.report_markdown(rows, limits), nl=False)
-    if json_path:
+    if json_path:       # first: a --json that cannot be written ends the command before any output
         target = Path(json_path).absolute()
-        write_outputs(target.parent, {target.name: (fp.report_json(rows, limits).encode(), False)})
+        write_outputs(target.parent, {target.name: (fp.report_json(rows, limits).encode(), False)}, option="--json")
+    terminal.lines(fp.report_markdown(rows, limits).removesuffix("\n"))
     problems = fp.violations(rows, limits)
     if problems:
         more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
-        click.echo("swarmvm: footprint: %s%s" % (problems[0], more), err=True)
+        terminal.message("footprint", "%s%s" % (problems[0], more))
         sys.exit(1)
 
 
@@ -177,27 +191,30 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, 
 @click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True)
 @click.option("-o", "--output", required=True,
               help="yaml: the supervisor.yaml to write; gen: a directory for one .gen per supervisor.")
+@max_states_option("each Sync or SupC step, checked before libFAUDES runs it,")
 @reports_errors
 def synth(models: tuple[str, ...], script_path: str | None, statements: tuple[str, ...], exports: tuple[str, ...],
-          minimise: bool, fmt: str, output: str) -> None:
+          minimise: bool, fmt: str, output: str, max_states: int) -> None:
     """Synthesise local modular supervisors from plants and specifications (libFAUDES).
 
     MODELS are automata (.xml, .xmd, .nza, .gen); the script names each by its file stem."""
-    for path in api.synthesise_models(models, script_path, statements, exports, minimise, fmt, output):
-        click.echo(path)
+    for path in api.synthesise_models(models, script_path, statements, exports, minimise, fmt, output,
+                                      max_states=max_states):
+        terminal.line(path)
 
 
 @main.command()
 @click.argument("a")
 @click.argument("b")
+@max_states_option("the comparison")
 @reports_errors
-def equiv(a: str, b: str) -> None:
+def equiv(a: str, b: str, max_states: int) -> None:
     """Do supervisor sets A and B have the same events and the same conjunction language?
 
     A and B are supervisor files, automata, or directories of automata. Exit status 0 when
     equivalent; 1 with a shortest distinguishing event sequence when not."""
-    same, report = api.equivalent(a, b)
-    click.echo(report)
+    same, report = api.equivalent(a, b, max_states=max_states)
+    terminal.lines(report)
     if not same:
         sys.exit(1)
 
@@ -209,13 +226,16 @@ def equiv(a: str, b: str) -> None:
 @click.option("--name", help="Stem of the files written (default: the input's file stem).")
 @click.option("--product-limit", default=200, show_default=True, type=click.IntRange(0),
               help="Draw the product of the supervisors only up to this many states.")
+@max_states_option("finding the product to draw (when --product-limit is over it)")
 @reports_errors
-def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, product_limit: int) -> None:
+def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, product_limit: int,
+           max_states: int) -> None:
     """Write a supervisor set as Nadzoru 2 YAML (canonical), libFAUDES .gen, or Graphviz pictures."""
-    compiled, written = api.export(inputs, fmt, output, name=name, product_limit=product_limit)
+    compiled, written = api.export(inputs, fmt, output, name=name, product_limit=product_limit,
+                                   max_states=max_states)
     _warn(compiled.model.warnings)
     for path in written:
-        click.echo(path)
+        terminal.line(path)
 
 
 main.add_command(studies_cli.sim)

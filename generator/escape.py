@@ -24,7 +24,9 @@ _IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]*\Z")
 # docstring (``"""``).
 _COMMENT_SAFE = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
                           " _-.,:;+=()[]{}<>@!%&^~|'#/$")
-_MARKDOWN_SPECIAL = frozenset("\\`*_{}[]<>()#+-.!|~")
+# What can change a Markdown table's structure or make a link, HTML or code of text: a cell
+# cannot split, nothing becomes a link or a tag. Emphasis (``_``) is left: names hold it.
+_MARKDOWN_SPECIAL = frozenset("\\`*[]<>|")
 
 
 class UnsafeText(ValueError):
@@ -129,8 +131,8 @@ def dot_string(text: str) -> str:
 
 def markdown(text: str) -> str:
     """``text`` as literal Markdown inline text (a table cell, say): unprintable characters
-    shown as their escapes, then every character Markdown gives a meaning (``|``, ``*``,
-    backquotes, brackets, ``<``) backslash-escaped."""
+    shown as their escapes, then the characters that could split a cell or make a link, a tag
+    or code (``|``, brackets, ``<``, backquotes, ``*``, ``\\``) backslash-escaped."""
     return "".join("\\" + c if c in _MARKDOWN_SPECIAL else c for c in terminal(text))
 
 

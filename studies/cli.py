@@ -6,11 +6,11 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
-import math
-import sys
 
 import click
 
+from .. import terminal
+from ..options import SEED, FiniteFloat
 from .drone_delivery.params import RULES, Params
 
 # Help for the options generated from Params (one per field; defaults are Table 2's).
@@ -31,6 +31,14 @@ HELP = dict(
     accuracy_samples="Random feature vectors per drone for the weekly accuracy.")
 
 
+def option_type(field: dataclasses.Field):
+    """The click type of a Params field's option: floats must be finite, the seed is a seed;
+    Params checks the other ranges itself (its messages name the option)."""
+    if field.name == "seed":
+        return SEED
+    return FiniteFloat() if isinstance(field.default, float) else type(field.default)
+
+
 def params_options(exclude=()):
     """Decorator: one click option per Params field (``--tau-min`` for ``tau_min``)."""
     def decorate(command):
@@ -44,25 +52,10 @@ def params_options(exclude=()):
             elif isinstance(field.default, bool):
                 command = click.option(flag, is_flag=True, help=HELP[field.name])(command)
             else:
-                command = click.option(flag, type=type(field.default), default=field.default, show_default=True,
+                command = click.option(flag, type=option_type(field), default=field.default, show_default=True,
                                        help=HELP[field.name])(command)
         return command
     return decorate
-
-
-class FiniteFloat(click.FloatRange):
-    """A float option that must be a number, in the range if one is given. click's ranges let
-    nan through (no comparison with it is true), and inf where the range has no top: the
-    studies divide by their parameters and run until a time is reached, so a trial would fail
-    with a traceback or never end. Refused here with click's own error, exit status 2."""
-
-    name = "float"
-
-    def convert(self, value, param, ctx):
-        number = super().convert(value, param, ctx)
-        if not math.isfinite(number):
-            self.fail("%s is not a finite number." % value, param, ctx)
-        return number
 
 
 class FloatList(click.ParamType):
@@ -84,8 +77,7 @@ def make_params(values: dict) -> Params:
     try:
         return Params(**values)
     except ValueError as exc:
-        click.echo("swarmvm: error: %s" % exc, err=True)
-        sys.exit(2)
+        terminal.fail(exc)
 
 
 # What `pip install "swarmvm[studies]"` adds (pyproject.toml), by import name.
@@ -97,8 +89,7 @@ def need_studies_extra() -> None:
     (a plain `pip install swarmvm` leaves them out), instead of an ImportError traceback."""
     missing = [name for name in STUDIES_EXTRA if importlib.util.find_spec(name) is None]
     if missing:
-        click.echo("swarmvm: error: the studies need %s: pip install \"swarmvm[studies]\"" % ", ".join(missing), err=True)
-        sys.exit(2)
+        terminal.fail("the studies need %s: pip install \"swarmvm[studies]\"" % ", ".join(missing))
 
 
 @click.group()
@@ -128,13 +119,13 @@ def sim_uav(mode, as_json, **values):
     result = run(make_params(values), mode=mode)
     summary = result.summary()
     if as_json:
-        click.echo(json.dumps(summary, sort_keys=True))
+        terminal.line(json.dumps(summary, sort_keys=True))
         return
     for name in ("orders", "delivered", "pending", "aborted", "takeoffs", "advertisements", "lost", "reservations",
                  "median_delivery_min", "mean_delivery_min"):
-        click.echo("%-20s %s" % (name, summary[name]))
-    click.echo("%-20s %s" % ("accuracy_by_week", " ".join("%.3f" % a for a in summary["accuracy_by_week"])))
-    click.echo("%-20s %.2f s (CPU %.2f s)" % ("time", summary["seconds"], summary["cpu_seconds"]))
+        terminal.line("%-20s %s" % (name, summary[name]))
+    terminal.line("%-20s %s" % ("accuracy_by_week", " ".join("%.3f" % a for a in summary["accuracy_by_week"])))
+    terminal.line("%-20s %.2f s (CPU %.2f s)" % ("time", summary["seconds"], summary["cpu_seconds"]))
 
 
 @sweep.command("uav")
@@ -146,7 +137,7 @@ def sim_uav(mode, as_json, **values):
 @click.option("--taus", default="5,10,15,20,25,30", show_default=True, type=FloatList(FiniteFloat(min=0, min_open=True)),
               help="Inter-arrival means (minutes).")
 @click.option("--runs", default=20, show_default=True, type=click.IntRange(1), help="Runs per configuration.")
-@click.option("--first-seed", default=1, show_default=True, type=int, help="Runs use seeds first..first+runs-1.")
+@click.option("--first-seed", default=1, show_default=True, type=SEED, help="Runs use seeds first..first+runs-1.")
 @click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local processes.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
@@ -158,11 +149,10 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
     rule_list = [r for r in rules.split(",") if r.strip()]
     bad = [r for r in rule_list if r not in grid_sweep.LEARNING_RULES]
     if bad:
-        click.echo("swarmvm: error: --rules: unknown rule %r (one of %s)" % (bad[0], ", ".join(grid_sweep.LEARNING_RULES)), err=True)
-        sys.exit(2)
+        terminal.fail("--rules: unknown rule %r (one of %s)" % (bad[0], ", ".join(grid_sweep.LEARNING_RULES)))
     specs = grid_sweep.grid(make_params(values), rule_list, thresholds, taus, range(first_seed, first_seed + runs))
     ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
-    click.echo("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
+    terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
 @plot.command("uav")
@@ -176,9 +166,9 @@ def plot_uav(results, out, tau):
     from .drone_delivery import plots
     paths, missing = plots.draw_all(results, out, tau=tau)
     for path in paths:
-        click.echo(path)
+        terminal.line(path)
     for text in missing:
-        click.echo("swarmvm: note: uav: %s: give --tau one of them" % text, err=True)
+        terminal.note("uav: %s: give --tau one of them" % text)
 
 
 COMMANDS = (sim, sweep, plot)
@@ -234,13 +224,12 @@ def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate
                 raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
             result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
     except ValueError as exc:
-        click.echo("swarmvm: error: bounds energy: %s" % exc, err=True)
-        sys.exit(2)
+        terminal.fail("bounds energy: %s" % exc)
     if as_json:
-        click.echo(json.dumps(result, sort_keys=True))
+        terminal.line(json.dumps(result, sort_keys=True))
         return
     for key, value in result.items():
-        click.echo("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))
+        terminal.line("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))
 
 
 from . import energy_commands  # noqa: E402,F401  (registers `sim|sweep|plot energy`)

@@ -4,12 +4,13 @@ are ``swarmvm bounds energy``, in cli.py). Registered on the study command group
 from __future__ import annotations
 
 import json
-import sys
 
 import click
 
+from .. import terminal
+from ..options import FiniteFloat
 from .energy_replenishment.params import MAX_DURATION_S
-from .cli import FiniteFloat, need_studies_extra, plot, sim, sweep
+from .cli import need_studies_extra, plot, sim, sweep
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
 RATE_OPTIONS = (
@@ -51,8 +52,7 @@ def params_from(values: dict, **fixed):
 
 
 def fail(message: str, status: int = 2):
-    click.echo("swarmvm: error: energy: %s" % message, err=True)
-    sys.exit(status)
+    terminal.fail("energy: %s" % message, status)
 
 
 @sim.command("energy")
@@ -74,12 +74,12 @@ def sim_energy(strategy, workers, chargers, seed, trace, as_json, **values):
     except (plugin.BuildError, trial.TrialError) as exc:
         fail(str(exc), 1)
     if as_json:
-        click.echo(json.dumps(result, sort_keys=True))
+        terminal.line(json.dumps(result, sort_keys=True))
         return
     for key in ("work", "bound_work", "work_of_bound", "efficiency", "bound_efficiency", "depleted",
                 "depleted_chargers", "consumed", "lost", "seconds"):
         value = result[key]
-        click.echo("%-18s %s" % (key, round(value, 4) if isinstance(value, float) else value))
+        terminal.line("%-18s %s" % (key, round(value, 4) if isinstance(value, float) else value))
 
 
 @sweep.command("energy")
@@ -104,7 +104,7 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     except (plugin.BuildError, trial.TrialError) as exc:
         fail(str(exc), 1)
-    click.echo("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
+    terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
 @plot.command("energy")
@@ -118,7 +118,7 @@ def plot_energy(results, out, **values):
     from .energy_replenishment import plots
     paths, missing = plots.draw_all(results, out, params_from(values))
     for path in paths:
-        click.echo(path)
+        terminal.line(path)
     for title in missing:
-        click.echo("swarmvm: note: energy: %s: no trials at these rates (give plot the rate options the sweep "
-                   "had, and a sweep of its --figures)" % title, err=True)
+        terminal.note("energy: %s: no trials at these rates (give plot the rate options the sweep had, and a "
+                      "sweep of its --figures)" % title)

@@ -138,7 +138,7 @@ def test_sim_energy_bad_value_one_line(option, value, message):
     out = subprocess.run([sys.executable, "-m", "swarmvm", "sim", "energy", option, value], capture_output=True,
                          text=True)
     assert out.returncode == 2 and out.stdout == ""
-    assert out.stderr.endswith("Invalid value for '%s': %s\n" % (option, message))
+    assert out.stderr == "swarmvm: error: %s: %s\n" % (option, message)
 
 
 @pytest.mark.emulator

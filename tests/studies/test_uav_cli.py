@@ -30,8 +30,8 @@ def test_sim_rejects_bad_values_with_one_line():
     ("--disc-m2", "0", "must be positive"), ("--capacity-wh", "0", "must be positive"),
     ("--speed-ms", "0", "must be positive"), ("--battery-kg", "-1", "must be positive"),
     ("--charger-eff", "1.5", "must lie in (0, 1]"),
-    ("--tau-min", "inf", "must be a finite number, got inf"),    # orders never came: the trial never ended
-    ("--frame-kg", "nan", "must be a finite number, got nan")])
+    ("--tau-min", "inf", "inf is not a finite number."),    # orders never came: the trial never ended
+    ("--frame-kg", "nan", "nan is not a finite number.")])
 def test_sim_refuses_parameters_the_physics_cannot_take(option, value, message):
     result = CliRunner().invoke(main, ["sim", "uav", option, value, *QUICK])
     assert result.exit_code == 2 and result.output == "swarmvm: error: %s: %s\n" % (option, message)
@@ -42,7 +42,7 @@ def test_sim_refuses_parameters_the_physics_cannot_take(option, value, message):
     ("--taus", "0", "0.0 is not in the range x>0."), ("--thresholds", "0.5,2", "2.0 is not in the range 0<=x<=1.")])
 def test_sweep_refuses_grid_values_by_the_option_given(option, value, message, tmp_path):
     result = CliRunner().invoke(main, ["sweep", "uav", "-o", str(tmp_path / "out"), option, value])
-    assert result.exit_code == 2 and result.output.endswith("Invalid value for '%s': %s\n" % (option, message))
+    assert result.exit_code == 2 and result.output == "swarmvm: error: %s: %s\n" % (option, message)
     assert not (tmp_path / "out").exists()
 
 
