@@ -14,6 +14,7 @@ declarations; argos' controller with g++ -fsyntax-only against the real ARGoS he
 Compiling takes seconds, so this target runs few iterations."""
 
 import functools
+import json
 import keyword
 import py_compile
 import re
@@ -53,6 +54,10 @@ AWKWARD = (C_CPP_WORDS + sorted(keyword.kwlist) + sorted(keyword.softkwlist)
            + ["stream", "x", "_x", "received_x", "svm", "svm_sct", "NULL", "main", "kilo_x", "swarmvm", "__x",
               "_", "", "1a", "EV_x", "a" * 255, "b" * 254 + "_", "\u00e9t\u00e9", "na\u00efve"])
 PLAIN_MODEL_NAMES = ["a", "worker", "m2"]
+# Input file names, whose stem is the model name when --name is not given (issue 23): fragments
+# that end a comment, a string or a line in the languages gen writes, and Make/CMake commands.
+FILE_STEMS = ["fuzz", "x\nall:\n\ttouch CANARY\n#", 'a"""b', "*/ x /*", "a\\", "??/", "$(shell x)", '")\nmessage(x)#',
+              "--", "\x1b[2J", "\u202e", "cci", "t\u00e9st"]
 MODEL_NAMES = AWKWARD + ["a-b", "m" * 200, "time", "signal", "FILE", "size_t", "printf", "stdin", "kilo", "svm_x"]
 PROBABILITIES = (Fraction(1), Fraction(1, 2), Fraction(1, 3), Fraction(0))
 LIMITS = re.compile(r"-DSVM_MAX_\w+=\d+")
@@ -63,8 +68,9 @@ def _pick(fdp, pool):
 
 
 def decode(data: bytes):
-    """(Model, model name) from the fuzzer's bytes: every count, name, flag, alphabet and
-    transition is drawn from them. The model is not checked here: swarmvm's reader is."""
+    """(Model, model name or None, input file name) from the fuzzer's bytes: every count, name,
+    flag, alphabet and transition is drawn from them. The model is not checked here: swarmvm's
+    reader is."""
     fdp = atheris.FuzzedDataProvider(data)
     n = fdp.ConsumeIntInRange(1, MAX_EVENTS)
     events: list = []
@@ -84,7 +90,9 @@ def decode(data: bytes):
                        for _ in range(count))
         supervisors.append(CanonicalSupervisor(alphabet, states))
     model = Model("fuzz.yaml", tuple(events), controllable, public, tuple(supervisors), probabilistic)
-    return model, _pick(fdp, PLAIN_MODEL_NAMES if fdp.ConsumeBool() else MODEL_NAMES)
+    name = _pick(fdp, PLAIN_MODEL_NAMES if fdp.ConsumeBool() else MODEL_NAMES) if fdp.ConsumeBool() else None
+    stem = _pick(fdp, FILE_STEMS) if fdp.ConsumeBool() else fdp.ConsumeUnicodeNoSurrogates(24)
+    return model, name, (stem.replace("/", "_").replace("\0", "_") or "fuzz") + ".yaml"
 
 
 @functools.lru_cache(maxsize=None)
@@ -140,14 +148,15 @@ def compile_target(target: str, folder: Path, scratch: Path) -> list:
     raise AssertionError("no compiler known for target %s" % target)
 
 
-def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> list:
-    """The property for one supervisor.yaml text generated under the model name ``name`` for
-    each of ``targets``; AssertionError naming the target otherwise. The targets whose code
-    was generated and compiled (the others refused the model)."""
+def check_supervisor(text: str, name: str | None, file: str = "fuzz.yaml", targets=tuple(sorted(TARGETS))) -> list:
+    """The property for one supervisor.yaml text in a file named ``file`` generated under the
+    model name ``name`` (None: the file's stem) for each of ``targets``; AssertionError naming
+    the target otherwise. The targets whose code was generated and compiled (the others refused
+    the model)."""
     compiled = []
     scratch = Path(tempfile.mkdtemp(prefix="swarmvm-fuzz-gen-"))
     try:
-        supervisor = scratch / "fuzz.yaml"
+        supervisor = scratch / file
         supervisor.write_text(text, encoding="utf-8")
         for target in targets:
             out = scratch / "out" / target
@@ -166,28 +175,29 @@ def check_supervisor(text: str, name: str, targets=tuple(sorted(TARGETS))) -> li
     return compiled
 
 
-REGRESSION_NAME = re.compile(r"\A# swarmvm gen --name (.*)\n")
+REGRESSION_HEADER = re.compile(r"\A# swarmvm gen (\{.*\})\n")
 
 
 def regression_text(data: bytes) -> str:
     """A finding's input as the regression case kept in tests/fuzz/regressions/codegen/: the
-    supervisor.yaml it decodes to, the model name in its first line. Kept decoded, so that the
-    case stays what it was when the pools above change."""
-    model, name = decode(data)
-    return "# swarmvm gen --name %s\n%s" % (name, to_yaml(model))
+    supervisor.yaml it decodes to, the model name and the file name as JSON in its first line.
+    Kept decoded, so that the case stays what it was when the pools above change."""
+    model, name, file = decode(data)
+    return "# swarmvm gen %s\n%s" % (json.dumps({"name": name, "file": file}), to_yaml(model))
 
 
 def check_regression(text: str) -> list:
     """Replay a kept case (:func:`regression_text`); the targets it compiled for."""
-    match = REGRESSION_NAME.match(text)
-    assert match, "a codegen case starts with '# swarmvm gen --name NAME'"
-    return check_supervisor(text, match.group(1))
+    match = REGRESSION_HEADER.match(text)
+    assert match, 'a codegen case starts with \'# swarmvm gen {"name": NAME, "file": FILE}\''
+    header = json.loads(match.group(1))
+    return check_supervisor(text, header["name"], header["file"])
 
 
 def compile_input(data: bytes) -> list:
     """The property for the fuzzer's bytes; the targets they compiled for."""
-    model, name = decode(data)
-    return check_supervisor(to_yaml(model), name)
+    model, name, file = decode(data)
+    return check_supervisor(to_yaml(model), name, file)
 
 
 def one_input(data: bytes) -> None:
