@@ -6,7 +6,7 @@ is closed; public events in a ``% swarmvm public:`` comment, as libFAUDES has no
 from fractions import Fraction
 from typing import Dict, List
 
-from .escape import gen_string
+from .escape import gen_string, identifier_part
 from .model import Model
 from .pictures import drawable_product, picture_files
 from .product import DEFAULT_MAX_STATES
@@ -18,6 +18,12 @@ def _flat(values) -> str:
 
 def _probability(p: Fraction) -> str:
     return repr(float(p))
+
+
+def _event(name: str) -> str:
+    """An event as a plain YAML scalar: ``EV_`` and a name the readers allow (letters, digits,
+    ``_``), checked by swarmvm.escape, so no name can need quoting or end the flow list."""
+    return "EV_" + identifier_part(name)
 
 
 def to_yaml(model: Model) -> str:
@@ -33,7 +39,7 @@ def to_yaml(model: Model) -> str:
         for row in sup.states:
             data.append(len(row))
             for event, target, _ in row:
-                data.extend(("EV_" + model.events[event], target >> 8, target & 0xFF))
+                data.extend((_event(model.events[event]), target >> 8, target & 0xFF))
             probs = [p for e, _, p in row if model.controllable[e]]
             prob_data.append(len(probs))
             prob_data.extend(_probability(p if p is not None else Fraction(1)) for p in probs)
@@ -41,7 +47,7 @@ def to_yaml(model: Model) -> str:
         "",
         "num_events: %d" % n,
         "num_supervisors: %d" % len(model.supervisors),
-        "events: %s" % _flat("EV_" + e for e in model.events),
+        "events: %s" % _flat(_event(e) for e in model.events),
         "ev_controllable: %s" % _flat(int(c) for c in model.controllable),
         "ev_public: %s" % _flat(int(p) for p in model.public),
         "sup_events: [ %s ]" % ", ".join(
