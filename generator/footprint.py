@@ -17,7 +17,6 @@ Only linked ELF files are read (pyelftools), so the figures are what the device 
   callbacks, and bytes no symbol accounts for (vector tables, alignment).
 """
 
-import json
 import os
 import re
 from dataclasses import asdict, dataclass, field
@@ -26,6 +25,7 @@ from pathlib import Path
 from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
 
+from .footprint_stack import Stack
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_PY, image_format
 
 FORMAT = image_format()
@@ -66,11 +66,75 @@ class Footprint:
     elf: str
     flash: Split = field(default_factory=Split)
     ram: Split = field(default_factory=Split)
+    stack: Stack | None = None          # worst-case stack (footprint_stack), when measured
 
     @property
     def vm(self):
         """The VM proper (core and tables, flash and RAM), the figure the seed's KPI bounds."""
         return self.flash.core + self.flash.tables + self.ram.core + self.ram.tables
+
+    def as_json(self) -> dict:
+        """The image as the JSON report writes it (and a baseline holds it)."""
+        image = dict(target=self.target, supervisor=self.supervisor, elf=self.elf, flash=asdict(self.flash),
+                     ram=asdict(self.ram), vm=self.vm)
+        if self.stack is not None:
+            image["stack"] = self.stack.as_json()
+        return image
+
+
+@dataclass(frozen=True)
+class Column:
+    """One figure of a row: its budget key, its heading in the tables, where the JSON report
+    holds it, and its unit. Budgets, deltas, the tables and the checks all go by this list, so a
+    figure added here (a worst-case stack, cycles per step) is budgeted and compared like the rest;
+    a row that lacks a column's figure (not measured) is left out of that column's checks."""
+    key: str
+    label: str
+    path: tuple[str, ...]
+    unit: str = "B"
+
+
+COLUMNS = (Column("flash", "flash", ("flash", "total")), Column("flash_core", "VM core", ("flash", "core")),
+           Column("flash_tables", "tables", ("flash", "tables")),
+           Column("flash_application", "application", ("flash", "application")),
+           Column("ram", "RAM", ("ram", "total")), Column("ram_core", "VM core", ("ram", "core")),
+           Column("ram_tables", "tables", ("ram", "tables")),
+           Column("ram_application", "application", ("ram", "application")),
+           Column("vm", "VM", ("vm",)), Column("stack", "stack", ("stack", "total")),
+           Column("stack_step", "VM step stack", ("stack", "step")))
+COLUMN = {column.key: column for column in COLUMNS}
+STACK_COLUMN = {"total": "stack", "step": "stack_step"}    # Stack's figures -> their columns
+
+
+@dataclass(frozen=True)
+class Row:
+    """A row of a report, measured now or read from a baseline: the figures by column key, and
+    why a figure that was measured is not known (a stack bound: ``indirect call in f``)."""
+    target: str
+    supervisor: str
+    values: dict[str, int]
+    unknown: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return "%s/%s" % (self.target, self.supervisor)
+
+
+def column_value(image: dict, column: Column):
+    """The figure of ``column`` in a JSON image, or None when the image does not hold it."""
+    value = image
+    for key in column.path:
+        if not isinstance(value, dict) or key not in value:
+            return None
+        value = value[key]
+    return value
+
+
+def row_of(footprint: Footprint) -> Row:
+    image = footprint.as_json()
+    values = {c.key: column_value(image, c) for c in COLUMNS}
+    unknown = {STACK_COLUMN[key]: reason for key, reason in image.get("stack", {}).get("unknown", {}).items()}
+    return Row(footprint.target, footprint.supervisor, {k: v for k, v in values.items() if v is not None}, unknown)
 
 
 class FootprintError(Exception):
@@ -208,23 +272,6 @@ def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
     return result
 
 
-def violations(footprints, limits=Limits()):
-    """One line per limit a footprint exceeds (empty: all within limits)."""
-    found = []
-    for f in footprints:
-        where = "%s/%s" % (f.target, f.supervisor)
-        if f.target == "kilobot":
-            if f.flash.total > limits.kilobot_flash:
-                found.append("%s: flash %d B exceeds the Kilobot's %d B" % (where, f.flash.total, limits.kilobot_flash))
-            stack = limits.kilobot_sram - f.ram.total
-            if stack < limits.kilobot_min_stack:
-                found.append("%s: static RAM %d B leaves %d B of the %d B SRAM for the stack, below %d B"
-                             % (where, f.ram.total, stack, limits.kilobot_sram, limits.kilobot_min_stack))
-        if f.vm > limits.vm:
-            found.append("%s: the VM takes %d B, above the %d B KPI" % (where, f.vm, limits.vm))
-    return found
-
-
 def source_sizes():
     """Bytes of source of each runtime, to compare with the seed's KPI table."""
     return {"Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)":
@@ -232,30 +279,3 @@ def source_sizes():
             "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
                 sum(len((RUNTIME_C / n).read_bytes()) for n in ("swarmvm.c", "swarmvm.h")),
             "C++ VM (runtime_cpp/swarmvm.hpp)": len((RUNTIME_CPP / "swarmvm.hpp").read_bytes())}
-
-
-def report_markdown(footprints, limits=Limits()):
-    lines = ["# VM footprint", "",
-             "Bytes in the linked images (docs/footprint.md says what is counted where). "
-             "Flash = code + constants + .data initialisers; RAM = .data + .bss (static, no stack).", "",
-             "| target | supervisor | flash | VM core | tables | application | RAM | VM core | tables | application | VM |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for f in sorted(footprints, key=lambda f: (f.target, f.supervisor)):
-        lines.append("| %s | %s | %d | %d | %d | %d | %d | %d | %d | %d | %d |" % (
-            f.target, f.supervisor, f.flash.total, f.flash.core, f.flash.tables, f.flash.application,
-            f.ram.total, f.ram.core, f.ram.tables, f.ram.application, f.vm))
-    lines += ["", "Limits: Kilobot flash <= %d B, Kilobot stack >= %d B of %d B SRAM, VM <= %d B (seed KPI)."
-              % (limits.kilobot_flash, limits.kilobot_min_stack, limits.kilobot_sram, limits.vm), "",
-              "## Source size (the seed's KPI table counts bytes of source)", "",
-              "| VM | bytes |", "|---|---:|"]
-    for name, size in list(source_sizes().items()) + list(SEED_KPI_SOURCE.items()):
-        lines.append("| %s | %d |" % (name, size))
-    return "\n".join(lines) + "\n"
-
-
-def report_json(footprints, limits=Limits()):
-    rows = [dict(target=f.target, supervisor=f.supervisor, elf=f.elf, flash=asdict(f.flash),
-                 ram=asdict(f.ram), vm=f.vm) for f in sorted(footprints, key=lambda f: (f.target, f.supervisor))]
-    return json.dumps(dict(limits=asdict(limits), images=rows, source_bytes=source_sizes(),
-                           seed_source_bytes=SEED_KPI_SOURCE, violations=violations(footprints, limits)),
-                      indent=2) + "\n"

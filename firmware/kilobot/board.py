@@ -29,6 +29,7 @@ RUN = 0x88              # kilolib message.h: the overhead controller's "run the 
 NORMAL = 0
 TICK_CYCLES = 256 * 1024            # kilolib's Timer0: compare match every 256 counts at 8 MHz / 1024
 SRAM_OFFSET = 0x800000              # avr-gcc's address of SRAM in ELF symbols
+RAMEND = 0x8FF                      # the ATmega328P's last SRAM address, where the stack starts
 
 
 def board_path() -> Path:
@@ -81,6 +82,7 @@ class Run:
     leds: list = field(default_factory=list)        # (tick, set_color value) on each change
     end: tuple = ()
     ram: int | None = None                          # the ``read`` variable at the end
+    stack: int | None = None                        # bytes of stack used at most (``paint_stack``)
     eeprom: bytes = b""
 
 
@@ -101,6 +103,8 @@ def parse(output: str) -> Run:
             run.leds.append((int(fields[1]), int(fields[2])))
         elif tag == "#collision":
             run.collisions += 1
+        elif tag == "#stack":
+            run.stack = RAMEND + 1 - int(fields[1])
         elif tag == "#ram":
             run.ram = int(fields[2])
         elif tag == "#end":
@@ -111,12 +115,13 @@ def parse(output: str) -> Run:
 
 
 def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: bytes | None = None,
-        read: str | None = None, timeout: int = 600) -> Run:
+        read: str | None = None, paint_stack: bool = False, timeout: int = 600) -> Run:
     """Run ``elf`` until kilo_ticks reaches ``ticks`` (None: until the image stops the CPU, for
     programs without kilolib, which get no messages). ``messages``: (tick, type, 9 data bytes),
     sent in order once kilo_ticks reaches their tick, after the RUN message at ``start_tick``;
     ``eeprom``: the EEPROM's contents from address 0 (default: erased, 0xFF); ``read``: a 4-byte
-    variable whose value at the end is ``Run.ram``."""
+    variable whose value at the end is ``Run.ram``; ``paint_stack``: SRAM above the static data
+    (``_end``) is painted before the run and ``Run.stack`` is the deepest the stack reached."""
     elf = Path(elf)
     with tempfile.TemporaryDirectory() as work:
         schedule = Path(work) / "schedule"
@@ -127,6 +132,8 @@ def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: 
             command += ["-t", str(sram_symbol(elf, "kilo_ticks")), "-n", str(ticks)]
         if read is not None:
             command += ["-r", str(sram_symbol(elf, read))]
+        if paint_stack:
+            command += ["-s", str(sram_symbol(elf, "_end"))]
         if eeprom is not None:
             (Path(work) / "eeprom.in").write_bytes(eeprom)
             command += ["-e", str(Path(work) / "eeprom.in")]

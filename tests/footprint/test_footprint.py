@@ -16,32 +16,14 @@ from elftools.elf.elffile import ELFFile
 from conformance.cases import batch, SUPERVISORS
 from swarmvm import footprint
 from swarmvm.runtime import RUNTIME_C
-from checkout import ROOT
+from footprint_images import NAMES, elf, swarmvm_footprint
 
-NAMES = ("energy_worker", "network_worker")
 M4 = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16", "-Os", "-ffunction-sections",
       "-fdata-sections"]
 
 
 def corpus_path(name):
     return next(p for p in SUPERVISORS if p.endswith("/%s.yaml" % name))
-
-
-@pytest.fixture(scope="module")
-def build(tmp_path_factory):
-    root = tmp_path_factory.mktemp("footprint")
-    targets = ["%s/%s/%s.elf" % (root, target, name) for target in ("capbot", "kilobot") for name in NAMES]
-    subprocess.run(["make", "-s", "-C", str(ROOT), "BUILD=%s" % root, *targets], check=True,
-                   capture_output=True, text=True)
-    return root
-
-
-def elf(build, target, name):
-    return build / target / ("%s.elf" % name)
-
-
-def swarmvm_footprint(*args):
-    return subprocess.run(["swarmvm", "footprint", *map(str, args)], capture_output=True, text=True)
 
 
 def avr_sizes(path):
@@ -113,6 +95,17 @@ def test_report_lists_every_image_and_writes_json(build, tmp_path):
     for row in data["images"]:
         measured = footprint.measure(row["elf"])
         assert row["flash"]["total"] == measured.flash.total and row["vm"] == measured.vm
+    assert "source_bytes" not in data and "Source size" not in result.stdout
+
+
+def test_the_runtimes_source_sizes_are_an_option(build, tmp_path):
+    """The report on a user's ELF shows the user's rows only; the project's own figures (the
+    runtimes' source sizes beside the seed's KPI table) come with --runtime-sizes, as
+    `make footprint` asks for them."""
+    result = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--runtime-sizes", "--json", tmp_path / "f.json")
+    assert result.returncode == 0, result.stderr
+    assert "## Source size" in result.stdout and "| C++ VM (published) | 15699 |" in result.stdout
+    data = json.loads((tmp_path / "f.json").read_text())
     assert "Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)" in data["source_bytes"]
 
 

@@ -20,13 +20,16 @@
  * The distance (ADC) of a received message is whatever simavr's ADC reads: not modelled.
  *
  * usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] [-e EEPROM_IN]
- *                      [-E EEPROM_OUT] [-r ADDR] IMAGE.elf
+ *                      [-E EEPROM_OUT] [-r ADDR] [-s ADDR] IMAGE.elf
  *   -t  SRAM address of kilo_ticks (avr-nm): schedule times and -n are in kilolib ticks
  *   -n  stop once kilo_ticks reaches this;  -c  stop after this many cycles (default 4e9)
  *   -m  schedule file, one message a line: "TICK TYPE DATA" (TYPE hex, DATA 18 hex digits),
  *       sent once kilo_ticks >= TICK and the channel is free, in file order
  *   -e  raw EEPROM contents from address 0;  -E  the EEPROM (1,024 bytes) written there at the end
  *   -r  SRAM address of a 4-byte variable printed at the end ("#ram ADDR VALUE", little-endian)
+ *   -s  stack painting: SRAM from this address (the end of .bss) to RAMEND is filled with 0xA5
+ *       before the run; at the end "#stack LOWEST" is the lowest address no longer holding it
+ *       (RAMEND + 1 when none: the stack's high-water mark is RAMEND + 1 - LOWEST bytes)
  * Output (stdout), in order of time: the image's USART0 lines as they are; "#rx TICK TYPE DATA"
  * once a scheduled message was sent; "#tx TICK TYPE DATA ok|badcrc" for each message the robot
  * sent; "#collision TICK"; "#led TICK RGB" (set_color's value) on each change; last "#end TICK CYCLES done|crashed|ticks|cycles".
@@ -68,7 +71,8 @@ typedef struct {
 
 static avr_t *avr;
 static avr_irq_t *ain0;
-static long ticks_at = -1, read_at = -1;
+static long ticks_at = -1, read_at = -1, paint_from = -1;
+#define STACK_PAINT 0xA5u                /* -s: the pattern the stack is painted with */
 static uint32_t stop_tick;
 static int has_stop_tick;
 static avr_cycle_count_t stop_cycle = 4000000000ull;
@@ -402,7 +406,7 @@ int main(int argc, char **argv)
     const char *schedule_path = NULL, *eeprom_in = NULL, *eeprom_out = NULL;
     uint32_t flags = 0;
     int option, state = cpu_Running;
-    while ((option = getopt(argc, argv, "t:n:c:m:e:E:r:")) != -1) {
+    while ((option = getopt(argc, argv, "t:n:c:m:e:E:r:s:")) != -1) {
         switch (option) {
         case 't': ticks_at = strtol(optarg, NULL, 0); break;
         case 'n': stop_tick = (uint32_t)strtoul(optarg, NULL, 0); has_stop_tick = 1; break;
@@ -411,12 +415,13 @@ int main(int argc, char **argv)
         case 'e': eeprom_in = optarg; break;
         case 'E': eeprom_out = optarg; break;
         case 'r': read_at = strtol(optarg, NULL, 0); break;
+        case 's': paint_from = strtol(optarg, NULL, 0); break;
         default: return 2;
         }
     }
     if (optind != argc - 1 || (has_stop_tick && ticks_at < 0)) {
         fprintf(stderr, "usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] "
-                        "[-e EEPROM_IN] [-E EEPROM_OUT] [-r ADDR] IMAGE.elf\n");
+                        "[-e EEPROM_IN] [-E EEPROM_OUT] [-r ADDR] [-s ADDR] IMAGE.elf\n");
         return 2;
     }
     avr_global_logger_set(log_errors);
@@ -438,6 +443,9 @@ int main(int argc, char **argv)
     }
     if (eeprom_in != NULL) {
         eeprom_io(eeprom_in, 0);
+    }
+    if (paint_from > 0 && paint_from <= avr->ramend) {
+        memset(avr->data + paint_from, STACK_PAINT, (size_t)(avr->ramend + 1 - paint_from));
     }
     avr_ioctl(avr, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
     flags &= ~(uint32_t)AVR_UART_FLAG_STDIO;
@@ -465,6 +473,13 @@ int main(int argc, char **argv)
     if (read_at >= 0) {
         printf("#ram %ld %lu\n", read_at, (unsigned long)avr->data[read_at] | (unsigned long)avr->data[read_at + 1] << 8 |
                (unsigned long)avr->data[read_at + 2] << 16 | (unsigned long)avr->data[read_at + 3] << 24);
+    }
+    if (paint_from > 0 && paint_from <= avr->ramend) {
+        long lowest = paint_from;
+        while (lowest <= avr->ramend && avr->data[lowest] == STACK_PAINT) {
+            lowest++;
+        }
+        printf("#stack %ld\n", lowest);
     }
     printf("#end %u %llu %s\n", (unsigned)ticks(), (unsigned long long)avr->cycle,
            stop_reason != NULL ? stop_reason : state == cpu_Done ? "done" : "crashed");

@@ -1,0 +1,24 @@
+"""The footprint tests' images (footprint_images.py), built once per session."""
+
+import pytest
+
+from footprint_images import build_deeper, build_images, build_larger
+
+
+@pytest.fixture(scope="session")
+def build(tmp_path_factory):
+    root = tmp_path_factory.mktemp("footprint")
+    build_images(root)
+    return root
+
+
+@pytest.fixture(scope="session")
+def larger(build, tmp_path_factory):
+    """The Kilobot energy_worker with a larger controller (footprint_images.BALLAST)."""
+    return build_larger(build, tmp_path_factory.mktemp("larger") / "energy_worker")
+
+
+@pytest.fixture(scope="session")
+def deeper(build, tmp_path_factory):
+    """The Kilobot energy_worker with a big local array in a check (footprint_images.DEEPER)."""
+    return build_deeper(build, tmp_path_factory.mktemp("deeper") / "energy_worker")

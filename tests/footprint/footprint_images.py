@@ -1,0 +1,83 @@
+"""The real images the footprint tests measure, and how the tests run the command on them:
+the CapBot and Kilobot applications of two corpus supervisors (mk/capbot.mk, mk/kilobot.mk),
+a Kilobot energy_worker whose controller grew (a table in flash, a buffer in RAM), for
+budgets and deltas to catch, and one whose callback needs a deeper stack. conftest.py builds them once per session."""
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from checkout import ROOT
+
+NAMES = ("energy_worker", "network_worker")
+BALLAST_FLASH, BALLAST_RAM = 600, 100
+BALLAST = """
+/* Ballast (tests/footprint): the controller grew by a table in flash and a buffer in RAM. */
+#include <avr/pgmspace.h>
+static const unsigned char ballast_flash[%d] PROGMEM = {1, 2, 3};
+volatile unsigned char ballast_ram[%d];
+__attribute__((constructor)) static void ballast(void) { ballast_ram[0] = pgm_read_byte(&ballast_flash[ballast_ram[1]]); }
+""" % (BALLAST_FLASH, BALLAST_RAM)
+
+
+def build_images(root: Path) -> None:
+    """<root>/<target>/<name>.elf for both targets and NAMES, by the project's make rules."""
+    targets = ["%s/%s/%s.elf" % (root, target, name) for target in ("capbot", "kilobot") for name in NAMES]
+    subprocess.run(["make", "-s", "-C", str(ROOT), "BUILD=%s" % root, *targets], check=True,
+                   capture_output=True, text=True)
+
+
+def build_larger(root: Path, folder: Path) -> Path:
+    """The Kilobot energy_worker.elf of `build_images(root)`, rebuilt by its generated Makefile
+    in ``folder`` from a copy of its sources whose controller has the ballast appended."""
+    shutil.copytree(root / "kilobot" / "gen" / "energy_worker", folder)
+    (folder / "energy_worker.elf").unlink(missing_ok=True)
+    with open(folder / "energy_worker_controller.c", "a") as controller:
+        controller.write(BALLAST)
+    return _make(folder)
+
+
+DEEPER_ARRAY = 300
+DEEPER = """
+    volatile unsigned char deeper[%d];     /* tests/footprint: a callback with a big local array */
+    deeper[kilo_ticks %% sizeof deeper] = 1;
+    return deeper[0];
+""" % DEEPER_ARRAY
+# What the indirect calls of the Kilobot runtime (runtime_c/swarmvm_kilobot.c) and kilolib reach, as
+# docs/footprint.md ("Stack") declares them:
+# the dispatch it registers, the setup and loop it gives kilo_start, the message callbacks it (or
+# kilolib's defaults) put in the pointers that kilolib's timer and comparator interrupts call.
+KILOBOT_INDIRECT = ("svm_step=svm_kilobot_app_dispatch,dispatch", "kilo_start=setup,loop",
+                    "__vector_14=message_tx,message_tx_success,message_tx_dummy,message_tx_success_dummy",
+                    "__vector_23=on_message,message_rx_dummy")
+
+
+def build_deeper(root: Path, folder: Path) -> Path:
+    """The Kilobot energy_worker.elf of `build_images(root)`, rebuilt in ``folder`` with the
+    check of atWork holding a DEEPER_ARRAY-byte local array: a VM step that needs more stack."""
+    shutil.copytree(root / "kilobot" / "gen" / "energy_worker", folder)
+    for stale in ["energy_worker.elf", *(p.name for p in folder.glob("*.su"))]:
+        (folder / stale).unlink(missing_ok=True)
+    controller = folder / "energy_worker_controller.c"
+    text = controller.read_text()
+    check = "unsigned char energy_worker_check_atWork(void)\n{\n"
+    body = text.index(check) + len(check)
+    controller.write_text(text[:body] + DEEPER + text[text.index("}\n", body):])
+    return _make(folder)
+
+
+def _make(folder: Path) -> Path:
+    kilolib = subprocess.run([sys.executable, str(ROOT / "firmware" / "kilobot" / "kilolib_build.py")], check=True,
+                             capture_output=True, text=True).stdout.strip()
+    subprocess.run(["make", "-s", "-C", str(folder), "energy_worker.elf", "KILOLIB=%s" % kilolib], check=True,
+                   capture_output=True, text=True)
+    return folder / "energy_worker.elf"
+
+
+def elf(build: Path, target: str, name: str) -> Path:
+    return build / target / ("%s.elf" % name)
+
+
+def swarmvm_footprint(*args, cwd=None) -> subprocess.CompletedProcess:
+    return subprocess.run(["swarmvm", "footprint", *map(str, args)], capture_output=True, text=True, cwd=cwd)

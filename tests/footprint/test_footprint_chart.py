@@ -1,0 +1,77 @@
+"""`swarmvm footprint --chart FILE.svg` (docs/footprint.md, "Formats"): well-formed SVG with one
+bar group per row, each bar split into VM core, tables and application, the budget and limit
+marked; the same report gives the same bytes; a name holding markup cannot break the file, nor
+the Markdown and JUnit reports. Before this change there was no --chart (usage error)."""
+
+import xml.etree.ElementTree as ET
+
+from footprint_images import elf, swarmvm_footprint
+from swarmvm import footprint
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def chart(*args, path):
+    result = swarmvm_footprint(*args, "--chart", path)
+    assert result.returncode in (0, 1), result.stderr
+    return ET.parse(path).getroot()
+
+
+def groups(root):
+    return {g.get("data-row"): g for g in root.iter(SVG + "g") if g.get("class") == "row"}
+
+
+def test_one_bar_group_per_row_with_its_split_budget_and_limit(build, larger, tmp_path):
+    budget = tmp_path / "budget.toml"
+    budget.write_text("[kilobot]\nflash = 12000\n")
+    images = [elf(build, "capbot", "energy_worker"), elf(build, "kilobot", "network_worker"), larger]
+    root = chart(*images, "--budget", budget, path=tmp_path / "f.svg")
+    rows = groups(root)
+    assert sorted(rows) == ["capbot/energy_worker", "kilobot/energy_worker", "kilobot/network_worker"]
+    for name, group in rows.items():
+        parts = [r.get("class") for r in group.iter(SVG + "rect")]
+        assert parts == ["core", "tables", "application"] * 2            # flash, then RAM
+        lines = sorted(line.get("class") for line in group.iter(SVG + "line"))
+        kilobot = name.startswith("kilobot/")
+        # Kilobot: the flash budget, the flash and RAM limits; CapBot: neither limit applies to bytes
+        assert lines == (["budget", "limit", "limit"] if kilobot else [])
+    measured = footprint.measure(larger)
+    rects = list(rows["kilobot/energy_worker"].iter(SVG + "rect"))
+    widths = [float(r.get("width")) for r in rects[:3]]
+    # the flash bar's parts are in the proportions of the measured split
+    assert abs(widths[0] / sum(widths) - measured.flash.core / measured.flash.total) < 0.01
+    budget_line = next(line for line in rows["kilobot/energy_worker"].iter(SVG + "line") if line.get("class") == "budget")
+    start = float(rects[0].get("x"))
+    assert abs((float(budget_line.get("x1")) - start) / sum(widths) - 12000 / measured.flash.total) < 0.01
+
+
+def test_the_same_report_gives_the_same_bytes(build, tmp_path):
+    images = [elf(build, "kilobot", "energy_worker"), elf(build, "capbot", "network_worker")]
+    for name in ("a.svg", "b.svg"):
+        assert swarmvm_footprint(*images, "--chart", tmp_path / name).returncode == 0
+    assert (tmp_path / "a.svg").read_bytes() == (tmp_path / "b.svg").read_bytes()
+
+
+def test_a_name_with_markup_cannot_break_the_chart_or_the_reports(build, tmp_path):
+    """The supervisor's name is the ELF's: `<b>&"x'|*.elf` reaches the SVG as text, the JUnit XML
+    as an attribute and the Markdown as a cell, each escaped for its context."""
+    name = "<b>&\"x'|*"
+    image = tmp_path / (name + ".elf")
+    image.write_bytes(elf(build, "kilobot", "energy_worker").read_bytes())
+    root = chart(image, path=tmp_path / "f.svg")
+    assert list(groups(root)) == ["kilobot/" + name]
+    assert [t.text for t in groups(root)["kilobot/" + name].iter(SVG + "text")][0] == "kilobot/" + name
+    junit = swarmvm_footprint(image, "--format", "junit", "--kilobot-flash", "10")
+    cases = ET.fromstring(junit.stdout).findall(".//testcase")
+    assert {c.get("classname") for c in cases} == {"kilobot/" + name}
+    assert cases[0].find("failure").text.startswith("kilobot/%s: flash " % name)
+    markdown = swarmvm_footprint(image).stdout
+    assert "| kilobot | \\<b\\>&\"x'\\|\\* | " in markdown
+
+
+def test_a_chart_onto_a_folder_is_one_line_before_any_output(build, tmp_path):
+    folder = tmp_path / "chart.svg"
+    folder.mkdir()
+    result = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--chart", folder)
+    assert result.returncode == 2 and result.stdout == "" and result.stderr == (
+        "swarmvm: error: %s: --chart: is a folder, not a file that can be written\n" % folder)

@@ -1,0 +1,99 @@
+"""Worst-case stack in the footprint report (issue 25, point 3; docs/footprint.md, "Stack"): the
+bound from the .su files the generated Kilobot Makefile writes and the call graph of the
+image's disassembly; an indirect call nobody declared, or no .su data, is reported unknown,
+never guessed; a callback made deeper is caught by a stack budget; static RAM plus stack is
+checked against the Kilobot's 2,048 B; and the deepest stack measured in simavr by stack
+painting stays within the static bound."""
+
+import json
+import shutil
+import sys
+
+from checkout import FIRMWARE
+from footprint_images import DEEPER_ARRAY, KILOBOT_INDIRECT, swarmvm_footprint
+
+from swarmvm import api
+from swarmvm.footprint import Limits
+
+sys.path.insert(0, str(FIRMWARE / "kilobot"))
+sys.path.insert(0, str(FIRMWARE.parent / "tests" / "kilobot"))
+
+from needs import board, board_or_skip  # noqa: E402
+
+INDIRECT = [arg for declaration in KILOBOT_INDIRECT for arg in ("--indirect", declaration)]
+
+
+def example(build):
+    """The bundled example as its generated Makefile built it, its .su files beside it."""
+    return build / "kilobot" / "gen" / "energy_worker" / "energy_worker.elf"
+
+
+def stack_of(elf, tmp_path, *args):
+    report = tmp_path / "report.json"
+    result = swarmvm_footprint(elf, "--json", report, *args, cwd=tmp_path)
+    return result, json.loads(report.read_text())["images"][0]["stack"]
+
+
+def test_the_example_has_a_known_bound_within_the_sram(build, tmp_path):
+    result, stack = stack_of(example(build), tmp_path, *INDIRECT)
+    assert result.returncode == 0, result.stderr
+    assert set(stack) == {"step", "total"}
+    assert 0 < stack["step"] < stack["total"] < 2048
+    row = [line for line in result.stdout.splitlines() if line.startswith("| kilobot | energy_worker |")][0]
+    assert row.endswith("| %d | %d |" % (stack["total"], stack["step"]))
+
+
+def test_an_undeclared_indirect_call_is_unknown(build, tmp_path):
+    result, stack = stack_of(example(build), tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert stack == {"unknown": {"step": "indirect call in svm_step", "total": "indirect call in kilo_start"}}
+    assert "| unknown | unknown |" in result.stdout
+    assert "kilobot/energy_worker: stack_step: unknown: indirect call in svm_step" in result.stdout
+    declared_elsewhere = stack_of(example(build), tmp_path, "--indirect", "svm_step=no_such_function")[1]
+    assert declared_elsewhere["unknown"]["step"].startswith("indirect call in svm_step: none of its declared targets")
+
+
+def test_an_image_without_stack_usage_files_is_unknown(build, tmp_path):
+    shutil.copy(example(build), tmp_path / "energy_worker.elf")
+    result, stack = stack_of(tmp_path / "energy_worker.elf", tmp_path, *INDIRECT)
+    assert result.returncode == 0, result.stderr
+    assert stack["unknown"]["total"] == "no -fstack-usage data (.su files) beside energy_worker.elf"
+
+
+def test_a_deeper_callback_is_caught_by_a_stack_budget(build, deeper, tmp_path):
+    _, before = stack_of(example(build), tmp_path, *INDIRECT)
+    _, after = stack_of(deeper, tmp_path, *INDIRECT)
+    assert after["step"] >= before["step"] + DEEPER_ARRAY
+    (tmp_path / "budget.toml").write_text("[kilobot]\nstack_step = %d\n" % (before["step"] + 16))
+    passing = swarmvm_footprint(example(build), "--budget", "budget.toml", *INDIRECT, cwd=tmp_path)
+    assert passing.returncode == 0, passing.stderr
+    failing = swarmvm_footprint(deeper, "--budget", "budget.toml", *INDIRECT, cwd=tmp_path)
+    assert failing.returncode == 1
+    assert failing.stderr == ("swarmvm: footprint: kilobot/energy_worker: stack_step %d B over its budget of %d B "
+                              "(by %d B)\n" % (after["step"], before["step"] + 16, after["step"] - before["step"] - 16))
+
+
+def test_static_ram_plus_stack_is_checked_against_the_sram(build):
+    report = api.footprint_report([str(example(build))], indirect=list(KILOBOT_INDIRECT))
+    assert report.failures() == []
+    row = report.rows[0]
+    sram = row.values["ram"] + row.values["stack"] - 1          # one byte short
+    small = api.footprint_report([str(example(build))], indirect=list(KILOBOT_INDIRECT),
+                                 limits=Limits(kilobot_sram=sram, kilobot_min_stack=0))
+    assert small.failures() == ["kilobot/energy_worker: static RAM %d B + worst-case stack %d B = %d B exceeds the "
+                                "Kilobot's %d B SRAM" % (row.values["ram"], row.values["stack"],
+                                                         sram + 1, sram)]
+
+
+def test_a_malformed_declaration_is_bad_input(build, tmp_path):
+    result = swarmvm_footprint(example(build), "--indirect", "svm_step", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr == "swarmvm: error: indirect[0]: 'svm_step' is not CALLER=TARGET[,TARGET...]\n"
+
+
+def test_the_stack_measured_in_simavr_is_within_the_static_bound(build, tmp_path):
+    board_or_skip()
+    _, stack = stack_of(example(build), tmp_path, *INDIRECT)
+    run = board.run(example(build), ticks=400, paint_stack=True)
+    assert run.end[2] == "ticks"
+    assert 0 < run.stack <= stack["total"]
