@@ -51,6 +51,7 @@ bench: setup footprint
 	$(PYTHON) benchmarks/python_vm.py
 	$(PYTHON) benchmarks/python_vs_baseline.py --json $(BUILD)/bench/python_vs_baseline.json
 	$(PYTHON) benchmarks/issue13.py --json $(BUILD)/bench/issue13.json
+	$(PYTHON) benchmarks/inspect_page.py --json $(BUILD)/bench/inspect_page.json
 
 clean:
 	rm -rf $(BUILD)

@@ -1,0 +1,49 @@
+"""Every command docs/inspect.md shows runs as shown (from a folder holding the repository's
+examples/), and the pages they write are what the page says: two robots' traces, then the same
+two compared. In Chromium, the report is screenshot at step 20 (docs/img/inspect.png was taken
+so, then reduced)."""
+
+import json
+import re
+import subprocess
+
+from conftest import ROOT, SCREENSHOTS, trace_lines
+
+DOC = ROOT / "docs" / "inspect.md"
+
+
+def commands() -> list:
+    blocks = re.findall(r"```sh\n(.*?)```", DOC.read_text(), re.S)
+    return [line for block in blocks for line in block.splitlines() if line.startswith("swarmvm ")]
+
+
+def page_data(path):
+    return json.loads(re.search(r'<script id="data" type="application/json">(.*?)</script>', path.read_text(),
+                                re.S).group(1))
+
+
+def test_the_commands_of_docs_inspect_run(tmp_path):
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    shown = commands()
+    assert [c.split()[1] for c in shown] == ["script", "trace", "script", "trace", "inspect", "inspect"]
+    for command in shown:
+        run = subprocess.run(["bash", "-c", "set -o pipefail; " + command], cwd=tmp_path, capture_output=True,
+                             text=True)
+        assert run.returncode == 0, (command, run.stderr)
+    report, compare = page_data(tmp_path / "report.html"), page_data(tmp_path / "compare.html")
+    assert [r["name"] for r in report["runs"]] == ["robot1.trace", "robot2.trace"]
+    assert [len(r["v"]) for r in report["runs"]] == [501, 501] and len(trace_lines(tmp_path / "robot1.trace")) == 500
+    assert compare["compare"] is True and compare["difference"] == 1
+
+
+def test_the_screenshot_view(tmp_path, browser):
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    for command in commands()[:5]:
+        subprocess.run(["bash", "-c", command], cwd=tmp_path, check=True, capture_output=True)
+    browser.open(tmp_path / "report.html")
+    ActionChains(browser.driver).send_keys(Keys.ARROW_RIGHT * 20).perform()
+    assert browser.driver.execute_script("return document.body.dataset.step") == "20"
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    browser.driver.save_screenshot(str(SCREENSHOTS / "docs-report.png"))
