@@ -26,8 +26,10 @@ class Target:
     keeps_order: bool = False            # its image keeps the source order (the Python SCT's exact mode)
 
 
-# The Python VM and the image format it reads (swarmvm_vm imports swarmvm_format).
-PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"))
+# The Python VM and the image format it reads (swarmvm_vm imports swarmvm_format), and what the
+# apps (python3 -m <name>_app) share: their options and fixed-rate loop.
+PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"),
+                     (RUNTIME_PY_DIR / "swarmvm_app.py", "swarmvm_app.py"))
 C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
     "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
 # The learned selection policy kept in a power-cut-safe store (docs/learning.md), built on request.

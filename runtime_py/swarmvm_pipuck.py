@@ -8,9 +8,8 @@ Pi-puck and on a laptop (``--sim``): ``begin_step``, ``event_occurred``, ``recei
 
 import json
 import socket
-import time
 
-import swarmvm_vm
+import swarmvm_app
 from swarmvm_format import MAX_NAME_LENGTH
 
 # Public events travel as UDP broadcasts of the message name on the robots' Wi-Fi network.
@@ -97,34 +96,17 @@ class SimRobot:
     occur."""
 
     def __init__(self, rows=(), log=print):
-        self._rows = list(rows)
-        self._row: frozenset = frozenset()
+        self._script = swarmvm_app.ScriptedEvents(rows)
         self._log = log
 
-    @staticmethod
-    def read_script(path, events):
-        """Rows (sets of ``EV_`` names) of an event script; unknown names are an error."""
-        rows = []
-        with open(path) as handle:
-            for number, line in enumerate(handle, 1):
-                line = line.strip()
-                if not line or line.startswith("#"):
-                    continue
-                names = frozenset() if line == "-" else frozenset(line.split())
-                unknown = sorted(names - set(events))
-                if unknown:
-                    raise SystemExit("%s:%d: unknown event %s" % (path, number, unknown[0]))
-                rows.append(names)
-        return rows
-
     def begin_step(self, number):
-        self._row = self._rows[number - 1] if number <= len(self._rows) else frozenset()
+        self._script.begin_step(number)
 
     def event_occurred(self, event):
-        return event in self._row
+        return self._script.occurred(event)
 
     def received(self, message):
-        return "EV__" + message in self._row
+        return self._script.occurred("EV__" + message)
 
     def set_motors(self, left, right):
         self._log("sim motors %d %d" % (left, right))
@@ -141,21 +123,9 @@ class SimRobot:
 
 
 def run(vm, robot, period=0.1, steps=None, trace=False):
-    """Step the VM at a fixed rate, every ``period`` seconds (forever, or ``steps`` times).
-
-    Deadlines advance by ``period`` from the start, so a slow step does not shift the ones
-    after it. With ``trace`` every step prints its canonical trace line (docs/conformance.md)."""
-    deadline = time.monotonic()
-    number = 0
+    """Step the VM at a fixed rate (swarmvm_app.run), the robot's ``begin_step`` before each
+    step; the robot is stopped when the loop ends, however it ends."""
     try:
-        while steps is None or number < steps:
-            number += 1
-            robot.begin_step(number)
-            fired = vm.step()
-            if trace:
-                names = [vm.image.event_name(e) for e in fired]
-                print(swarmvm_vm.format_trace_line(number, names, vm.states, vm.violations), flush=True)
-            deadline += period
-            time.sleep(max(0.0, deadline - time.monotonic()))
+        swarmvm_app.run(vm, period=period, steps=steps, trace=trace, begin_step=robot.begin_step)
     finally:
         robot.stop()

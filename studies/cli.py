@@ -13,6 +13,11 @@ from .. import terminal
 from ..options import SEED, FiniteFloat
 from .drone_delivery.params import RULES, Params
 
+# The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
+# spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
+# a work rate of 0), and the mobile bound divides by the work rate.
+WORK_RATE = FiniteFloat(min=0, min_open=True)
+
 # Help for the options generated from Params (one per field; defaults are Table 2's).
 HELP = dict(
     rule="Winner rule (learning) or the threshold baseline.", threshold="Threshold rule: bid iff SoC >= this fraction.",
@@ -189,8 +194,7 @@ def bounds():
 @click.option("--charge-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
               help="Charging rate per second (workers and chargers).")
 @click.option("--move-rate", default=1.0, show_default=True, type=FiniteFloat(min=0), help="Moving, per second.")
-@click.option("--work-rate", default=1.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
-              help="Working, per second.")
+@click.option("--work-rate", default=1.0, show_default=True, type=WORK_RATE, help="Working, per second.")
 @click.option("--core-rate", default=0.05, show_default=True, type=FiniteFloat(min=0), help="Core, per second.")
 @click.option("--commute-m", default=1.0, show_default=True, type=FiniteFloat(min=0),
               help="Distance between the charging (or transfer) and work regions.")

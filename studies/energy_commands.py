@@ -10,7 +10,7 @@ import click
 from .. import terminal
 from ..options import FiniteFloat
 from .energy_replenishment.params import MAX_DURATION_S
-from .cli import need_studies_extra, plot, sim, sweep
+from .cli import WORK_RATE, need_studies_extra, plot, sim, sweep
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
 RATE_OPTIONS = (
@@ -22,18 +22,22 @@ RATE_OPTIONS = (
      "What a mobile charger gives per second."),
     ("--transfer-loss", "transfer_loss", FiniteFloat(0, 1, max_open=True), "Share of a transfer that is lost (1 - xi)."),
     ("--move-rate", "move_rate", FiniteFloat(min=0), "Moving, per second."),
-    ("--work-rate", "work_rate", FiniteFloat(min=0), "Working, per second."),
+    ("--work-rate", "work_rate", WORK_RATE, "Working, per second."),
     ("--core-rate", "core_rate", FiniteFloat(min=0), "Core, per second."),
     ("--duration", "duration_s", FiniteFloat(min=0, min_open=True, max=MAX_DURATION_S), "Trial length, seconds."),
 )
 
 
 def rate_options(command):
-    """One option per RATE_OPTIONS entry; not given (None), it keeps Params' default, shown."""
+    """One option per RATE_OPTIONS entry, Params' default its default (shown as every verb shows
+    one); --transfer-rate not given (None) follows the charge rate."""
     from .energy_replenishment.params import Params
     for flag, field, kind, text in reversed(RATE_OPTIONS):
-        shown = "the charge rate" if field == "transfer_rate" else "%g" % getattr(Params(), field)
-        command = click.option(flag, type=kind, default=None, show_default=shown, help=text)(command)
+        if field == "transfer_rate":
+            command = click.option(flag, type=kind, default=None, show_default="the charge rate", help=text)(command)
+        else:
+            command = click.option(flag, type=kind, default=getattr(Params(), field), show_default=True,
+                                   help=text)(command)
     return command
 
 

@@ -45,8 +45,8 @@ class Params:
                   (self.capacity > 0 and self.charger_capacity > 0, "capacities must be positive"),
                   (self.charge_rate > 0 and self.transfer_rate > 0, "charge and transfer rates must be positive"),
                   (0 <= self.transfer_loss < 1, "transfer loss must be in [0, 1)"),
-                  (all(rate >= 0 for rate in (self.move_rate, self.work_rate, self.core_rate)),
-                   "rates must not be negative"),
+                  (self.move_rate >= 0 and self.core_rate >= 0, "rates must not be negative"),
+                  (self.work_rate > 0, "the work rate must be positive (working must spend energy)"),
                   (self.speed_cms > 0 and self.duration_s > 0, "speed and duration must be positive"),
                   (self.duration_s <= MAX_DURATION_S, "duration must be at most %d s (ARGoS counts an experiment's "
                                                       "length in 32-bit clock ticks)" % MAX_DURATION_S),

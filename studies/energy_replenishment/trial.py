@@ -23,7 +23,12 @@ class TrialError(RuntimeError):
 def run(p: Params, library: Path | None = None, trace: Path | None = None, baseline: bool = False) -> dict:
     """The trial's result: the loop functions' totals, the bound and the wall time. ``library``:
     a plugin already built (:func:`plugin.build`); ``trace``: write the per-step CSV there;
-    ``baseline``: the same robots with an empty controller (benchmarks/energy_study.py)."""
+    ``baseline``: the same robots with an empty controller (benchmarks/energy_study.py).
+
+    A relative ``trace`` is the caller's: ARGoS runs in a temporary folder, removed after the
+    trial, where a relative path would have written it (and lost it). A trace asked for and not
+    written is a TrialError, not a trial that seems to have run."""
+    trace = Path(trace).absolute() if trace else None
     library = library or plugin.build()
     prefix = plugin.find_argos()
     env = dict(os.environ, LD_LIBRARY_PATH=os.pathsep.join(filter(None, [str(prefix / "lib" / "argos3"),
@@ -42,6 +47,8 @@ def run(p: Params, library: Path | None = None, trace: Path | None = None, basel
             errors = (Path(folder) / "err.txt").read_text() if (Path(folder) / "err.txt").is_file() else ""
             raise TrialError("argos3 failed (status %d): %s" % (done.returncode, (errors + done.stderr).strip()[-2000:]))
         totals = json.loads(result.read_text())
+    if trace and not trace.is_file():
+        raise TrialError("argos3 wrote no trace to %s (is its folder there and writable?)" % trace)
     bound = p.bound()
     totals.update(bound_work=bound.work, bound_efficiency=bound.efficiency, work_of_bound=totals["work"] / bound.work,
                   seconds=seconds)

@@ -51,15 +51,6 @@ def test_bad_params_rejected(bad):
         Params(**bad)
 
 
-@pytest.fixture(scope="module")
-def library():
-    try:
-        plugin.find_argos()
-    except plugin.BuildError as exc:
-        pytest.skip(str(exc))
-    return plugin.build()
-
-
 def conserved(r, p: Params) -> float:
     """Initial energy + charged - spent - lost - final: zero if no energy appears or vanishes."""
     initial = p.workers * p.capacity + r["chargers"] * p.charger_capacity

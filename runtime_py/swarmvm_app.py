@@ -1,0 +1,149 @@
+"""What the generated Python apps share (``python3 -m <name>_app`` of the python and pipuck
+targets): their command-line options, reading an event script, and the fixed-rate loop.
+Copied as it is into every generated Python and Pi-puck target; standard library only.
+
+One parser for both apps, so the same option means the same thing on a laptop and on a robot,
+and ``--help`` answers before anything steps."""
+
+import argparse
+import os
+import sys
+import time
+
+import swarmvm_vm
+
+STDIN = "-"     # the script name that means standard input, as for ``swarmvm trace --script``
+
+
+def _steps(text):
+    """A positive number of steps (argparse reports anything else as a usage error)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError("%r is not a positive number of steps" % text)
+    return value
+
+
+def _period(text):
+    """A non-negative, finite number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 0 <= value < float("inf"):
+        raise argparse.ArgumentTypeError("%r is not a number of seconds (0 or more)" % text)
+    return value
+
+
+def _seed(text):
+    """A seed of the VM's 32-bit generator."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= 0xFFFFFFFF:
+        raise argparse.ArgumentTypeError("%r is not a seed (0 to 4294967295)" % text)
+    return value
+
+
+def parser(description, script_help):
+    """The options every app takes: --steps, --period, --seed, --inputs, --control, --policy,
+    --script (``script_help`` says where its events go), --trace. An app adds its own."""
+    options = argparse.ArgumentParser(description=description)
+    options.add_argument("--steps", type=_steps, help="stop after this many steps (default: run until stopped)")
+    options.add_argument("--period", type=_period, default=0.1, help="seconds per step (default: 0.1)")
+    options.add_argument("--seed", type=_seed, default=1,
+                         help="seed of the VM's generator, which chooses among enabled controllable events "
+                              "(default: 1)")
+    options.add_argument("--inputs", choices=swarmvm_vm.INPUT_MODES, default="level",
+                         help="an uncontrollable event occurs in every step its check is true, or only in the "
+                              "step it becomes true (default: level)")
+    options.add_argument("--control", choices=swarmvm_vm.CONTROL_MODES, default="after-inputs",
+                         help="choose a controllable event in every step, or only in a step without inputs "
+                              "(default: after-inputs)")
+    options.add_argument("--policy", choices=("uniform", "first", "weighted"), default="uniform",
+                         help="how the VM chooses among enabled controllable events (default: uniform)")
+    options.add_argument("--script", metavar="FILE", help=script_help + " ('-': standard input)")
+    options.add_argument("--trace", action="store_true",
+                         help="print the canonical trace line of each step (as swarmvm trace prints it)")
+    return options
+
+
+def vm_options(args):
+    """The VM's options among parsed ``args``, as keyword arguments of ``swarmvm_vm.VM``."""
+    return dict(seed=args.seed, inputs=args.inputs, control=args.control, policy=args.policy)
+
+
+def read_script(path, events):
+    """Rows (sets of ``EV_`` names) of an event script (docs/conformance.md), ``-`` read from
+    standard input; an unknown name or an unreadable file ends the app with one line."""
+    try:
+        if path == STDIN:
+            lines = sys.stdin.read().splitlines()
+        else:
+            with open(path) as handle:
+                lines = handle.read().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SystemExit("%s: cannot read the script (%s)" % (path, getattr(exc, "strerror", None) or exc))
+    rows = []
+    for number, line in enumerate(lines, 1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        names = frozenset() if line == "-" else frozenset(line.split())
+        unknown = sorted(names - set(events))
+        if unknown:
+            raise SystemExit("%s:%d: unknown event %s" % (path, number, unknown[0]))
+        rows.append(names)
+    return rows
+
+
+class ScriptedEvents:
+    """The uncontrollable events of an event script: those of row ``n`` occur at step ``n``,
+    none after the script's end."""
+
+    def __init__(self, rows=()):
+        self._rows = list(rows)
+        self.row: frozenset = frozenset()
+
+    def begin_step(self, number):
+        self.row = self._rows[number - 1] if number <= len(self._rows) else frozenset()
+
+    def occurred(self, name):
+        return name in self.row
+
+    def bind(self, vm):
+        """Make the script decide every uncontrollable event of ``vm`` (their checks replaced;
+        the actions stay)."""
+        for event in vm.input_order:
+            vm.bind(event, check=lambda _data, name=vm.image.event_name(event): name in self.row)
+
+
+def run(vm, period=0.1, steps=None, trace=False, begin_step=None):
+    """Step the VM at a fixed rate, every ``period`` seconds (forever, or ``steps`` times),
+    calling ``begin_step(n)`` before step ``n`` when given; Ctrl-C ends it with a line saying
+    how many steps ran, not a traceback.
+
+    Deadlines advance by ``period`` from the start, so a slow step does not shift the ones
+    after it. With ``trace`` every step prints its canonical trace line (docs/conformance.md)."""
+    program = os.path.basename(sys.argv[0])
+    number = 0
+    try:
+        if steps is None:       # it may print nothing else: say that it runs, and how to stop it
+            print("%s: stepping the VM until stopped (Ctrl-C; --steps N stops after N steps, --help lists "
+                  "the options)" % program, file=sys.stderr, flush=True)
+        deadline = time.monotonic()
+        while steps is None or number < steps:
+            number += 1
+            if begin_step is not None:
+                begin_step(number)
+            fired = vm.step()
+            if trace:
+                names = [vm.image.event_name(e) for e in fired]
+                print(swarmvm_vm.format_trace_line(number, names, vm.states, vm.violations), flush=True)
+            deadline += period
+            time.sleep(max(0.0, deadline - time.monotonic()))
+    except KeyboardInterrupt:
+        print("%s: stopped in step %d" % (program, number), file=sys.stderr, flush=True)
