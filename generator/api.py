@@ -16,11 +16,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
 from . import footprint as fp
+from . import footprint_report as fp_report
 from . import pipeline, properties, script
-from .arguments import checked, file_name, file_names, flag, instance, integer, number, one_of, optional, text, texts
+from .arguments import (checked, file_name, file_names, flag, instance, integer, maybe_file_names, number, one_of,
+                        optional, text, texts)
 from .equiv import compare, format_difference
+from .footprint_budget import Budgets, read_budgets
+from .footprint_delta import read_baseline
+from .footprint_stack import measure_stack, parse_indirect
 from .errors import InputError, read_input
 from .export import FORMATS, export_files
+from .inspect_page import Inspection, write_page
 from .model import Model
 from .naming import file_stem
 from .pipeline import Compiled, compile_inputs, compile_spec
@@ -36,8 +42,8 @@ from .user_files import Drift, drift
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
            "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "script_lines", "make_script",
-           "trace", "measure_footprint", "check_properties", "equivalent", "export", "write_export",
-           "synthesise_models", "TARGETS", "DEFAULT_MAX_STATES", "TRANSITIONS_PER_STATE"]
+           "trace", "measure_footprint", "footprint_report", "check_properties", "equivalent", "export", "write_export",
+           "synthesise_models", "inspect", "TARGETS", "DEFAULT_MAX_STATES", "TRANSITIONS_PER_STATE"]
 
 if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
     from runtime_py.swarmvm_vm import Image
@@ -209,14 +215,18 @@ def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: st
     return _vm.replay_lines(machine, rows)
 
 
-@checked(elfs=file_names)
-def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
-    """Flash and static RAM of linked VM images (docs/footprint.md)."""
+@checked(elfs=file_names, indirect=texts)
+def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = ()) -> list[fp.Footprint]:
+    """Flash, static RAM and worst-case stack of linked VM images (docs/footprint.md); ``indirect``:
+    ``CALLER=TARGET,...`` declarations of what an indirect call in CALLER may reach."""
     from elftools.common.exceptions import ELFError
+    calls = parse_indirect(indirect)
     rows = []
     for path in elfs:
         try:
-            rows.append(fp.measure(path))
+            footprint = fp.measure(path)
+            footprint.stack = measure_stack(path, footprint.target, calls)
+            rows.append(footprint)
         except ELFError as exc:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
         except OSError as exc:
@@ -224,11 +234,35 @@ def measure_footprint(elfs: Sequence[str]) -> list[fp.Footprint]:
     return rows
 
 
-@checked(paths=file_names, max_states=_MAX_STATES)
-def check_properties(paths: Sequence[str], max_states: int = DEFAULT_MAX_STATES) -> list[str]:
-    """The design checks of each supervisor set (docs/models.md), one report per file; a set
-    whose product is over ``max_states`` states is refused (docs/limits.md)."""
-    return [format_report(path, properties.check_properties(compile_model([path]).model, max_states))
+@checked(elfs=file_names, budget=optional(file_name), baseline=optional(file_name),
+         fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.Limits"),
+         indirect=texts)
+def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: str | None = None,
+                     fail_on_growth: float | None = None, limits: fp.Limits = fp.Limits(),
+                     indirect: Sequence[str] = ()) -> fp_report.FootprintReport:
+    """The footprint of linked images checked against ``limits`` and the budgets of the TOML file
+    ``budget`` (``[tool.swarmvm.footprint]`` of a ``pyproject.toml``), compared with the JSON report
+    ``baseline``, each column's growth judged against ``fail_on_growth`` per cent, indirect calls
+    resolved by the ``indirect`` declarations; the files are read first, so a bad one raises
+    InputError before any image is measured (docs/footprint.md).
+    ``swarmvm.footprint_report`` writes it as Markdown, JUnit XML or JSON; ``failures()`` is empty
+    when it passes."""
+    if fail_on_growth is not None and baseline is None:
+        raise InputError("", "fail_on_growth", "growth is measured against a baseline: give one")
+    budgets = read_budgets(budget) if budget is not None else Budgets()
+    old = read_baseline(baseline) if baseline is not None else None
+    parse_indirect(indirect)
+    return fp_report.build(measure_footprint(elfs, indirect), limits, budgets, old, fail_on_growth)
+
+
+@checked(paths=file_names, max_states=_MAX_STATES, all_findings=flag)
+def check_properties(paths: Sequence[str], max_states: int = DEFAULT_MAX_STATES,
+                     all_findings: bool = False) -> list[str]:
+    """The design checks of each supervisor set (docs/models.md), one report per file, listing
+    the first three findings of each check (every one with ``all_findings``); a set whose
+    product is over ``max_states`` states is refused (docs/limits.md)."""
+    examples = None if all_findings else 3
+    return [format_report(path, properties.check_properties(compile_model([path]).model, max_states), examples)
             for path in paths]
 
 
@@ -277,3 +311,16 @@ def synthesise_models(models: Sequence[str], script_path: str | None, statements
     spec = synthesise(script, models_by_name(list(models)), exports, minimise, max_states)
     compiled = compile_spec(spec, [output])       # files named after the output
     return write_export(compiled.model, file_stem(compiled.stem, output, "--output"), fmt, output, 0)
+
+
+@checked(supervisor=file_name, traces=maybe_file_names, output=file_name, name=_NAME, compare=flag, first_step=integer(1))
+def inspect(supervisor: str, traces: Sequence[str], output: str, name: str | None = None, compare: bool = False,
+            first_step: int = 1) -> Inspection:
+    """Write the inspector's page (docs/inspect.md) to ``output``: one self-contained HTML file
+    drawing the supervisors and replaying the canonical traces (one per robot; ``compare``: two,
+    with the first step where they differ), from step ``first_step`` on, titled ``name`` (default:
+    the supervisor's file stem). Every trace is read and checked before the page is written."""
+    if compare and len(traces) != 2:
+        raise InputError("", "compare", "compares exactly two traces, got %d" % len(traces))
+    compiled = compile_model([supervisor])
+    return write_page(compiled.model, compiled.stem if name is None else name, traces, output, compare, first_step)

@@ -82,6 +82,11 @@ def file_names(name: str, value: Any) -> None:
         raise InputError("", name, "no file given")
 
 
+def maybe_file_names(name: str, value: Any) -> None:
+    """A list or tuple of file names, possibly empty (the traces of ``inspect``)."""
+    (file_names if value else texts)(name, value)
+
+
 def texts(name: str, value: Any) -> None:
     """A list or tuple of str, possibly empty (repeatable options: statements, exports)."""
     _sequence(name, value, text)

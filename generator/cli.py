@@ -1,5 +1,5 @@
 """The ``swarmvm`` command line (check, pack, gen, script, trace, footprint, synth, equiv,
-export): a thin layer over :mod:`swarmvm.api`.
+export, inspect): a thin layer over :mod:`swarmvm.api`.
 
 Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on stderr and
 exit status 2, before anything is written."""
@@ -13,8 +13,12 @@ import click
 
 from . import __version__, api, terminal
 from . import footprint as fp
+from . import footprint_budget as fp_budget
+from . import footprint_report as fp_report
 from .escape import markdown
 from .export import FORMATS
+from .footprint_chart import svg_chart
+from .inspect_page import ROBOT_STEPS, window
 from .options import SEED, FiniteFloat, OneLineErrors
 from .output import write_outputs
 from .runtime import python_vm
@@ -56,20 +60,25 @@ def main() -> None:
 @main.command()
 @click.argument("files", nargs=-1, required=True)
 @click.option("--properties", is_flag=True,
-              help="Also check each set's design: deadlocks, lost control, dead events, ignored inputs, "
-                   "confluence (docs/models.md).")
+              help="Check each set's design instead of printing the size table: deadlocks, lost control, "
+                   "dead events, ignored inputs, confluence (docs/models.md).")
+@click.option("--all", "all_findings", is_flag=True,
+              help="With --properties: list every finding (without it, the first 3 of each check).")
 @click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)),
               help="Also apply this target's own rules, as gen would (nothing is written).")
 @click.option("--name", help="With --target: the model name gen would be given (default: the file stem).")
 @max_states_option("the design checks (--properties)")
 @reports_errors
-def check(files: tuple[str, ...], properties: bool, target: str | None, name: str | None, max_states: int) -> None:
+def check(files: tuple[str, ...], properties: bool, all_findings: bool, target: str | None, name: str | None,
+          max_states: int) -> None:
     """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
+    if all_findings and not properties:
+        raise click.BadOptionUsage("--all", "only with --properties")
     if properties:
-        for report in api.check_properties(files, max_states=max_states):
+        for report in api.check_properties(files, max_states=max_states, all_findings=all_findings):
             terminal.lines(report)
         return
     rows, warnings = api.check(files, target=target, name=name)
@@ -95,7 +104,8 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)), required=True)
+@click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)), required=True,
+              help="The robot or language to generate for.")
 @click.option("-o", "--output", "outdir", required=True, help="Directory to write into.")
 @click.option("--name", help="Model name for generated files (default: the input's file stem).")
 @click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
@@ -105,7 +115,9 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...]) -> None:
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
 
-    Several Nadzoru 2 XML automata make one set of local supervisors. Generated files are
+    INPUTS is a supervisor.yaml (Nadzoru 2), or one or more automata that make one set of
+    local supervisors, one each: Nadzoru 2 XML (.xml), IDES (.xmd), Nadzoru (.nza) or
+    libFAUDES (.gen). Generated files are
     rewritten on every run; a controller skeleton that already exists is never overwritten,
     and when its callbacks no longer match the model a warning names them and a fresh
     skeleton is written beside it as <file>.new."""
@@ -118,8 +130,10 @@ def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, lea
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("--steps", default=100, show_default=True, type=click.IntRange(1, 10 ** 7))
-@click.option("--seed", default=1, show_default=True, type=SEED)
+@click.option("--steps", default=100, show_default=True, type=click.IntRange(1, 10 ** 7),
+              help="Steps (lines) in the script.")
+@click.option("--seed", default=1, show_default=True, type=SEED,
+              help="Seed of the script's random draws: the same seed, the same script.")
 @click.option("--density", default=0.25, show_default=True, type=FiniteFloat(0, 1),
               help="Chance that an uncontrollable event occurs in a step.")
 @reports_errors
@@ -131,12 +145,18 @@ def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> No
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("--script", "script_path", required=True, type=click.Path(),
-              help="Event script (docs/conformance.md).")
-@click.option("--seed", default=1, show_default=True, type=SEED)
-@click.option("--inputs", "input_mode", type=click.Choice(vm.INPUT_MODES), default="level", show_default=True)
-@click.option("--control", type=click.Choice(vm.CONTROL_MODES), default="after-inputs", show_default=True)
-@click.option("--policy", type=click.Choice(["uniform", "first", "weighted"]), default="uniform", show_default=True)
+@click.option("--script", "script_path", required=True, type=click.Path(allow_dash=True),
+              help="Event script (docs/conformance.md); - reads it from standard input.")
+@click.option("--seed", default=1, show_default=True, type=SEED,
+              help="Seed of the VM's generator, which chooses among enabled controllable events.")
+@click.option("--inputs", "input_mode", type=click.Choice(vm.INPUT_MODES), default="level", show_default=True,
+              help="An uncontrollable event occurs in every step its check is true (level), or only in the "
+                   "step it becomes true (edge).")
+@click.option("--control", type=click.Choice(vm.CONTROL_MODES), default="after-inputs", show_default=True,
+              help="A controllable event is chosen in every step, after its inputs (after-inputs), or only in a "
+                   "step where no uncontrollable event occurred (if-quiet).")
+@click.option("--policy", type=click.Choice(["uniform", "first", "weighted"]), default="uniform", show_default=True,
+              help="How the VM chooses among enabled controllable events.")
 @reports_errors
 def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str, control: str, policy: str) -> None:
     """Run the reference (Python) VM on an event script and print the canonical trace.
@@ -148,33 +168,61 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 
 @main.command()
 @click.argument("elfs", nargs=-1, required=True, type=click.Path())
-@click.option("--json", "json_path", type=click.Path(), help="Also write the report as JSON.")
+@click.option("--json", "json_path", type=click.Path(), help="Also write the report as JSON (a later run's --baseline).")
+@click.option("--budget", "budget_path", type=click.Path(),
+              help="TOML file of budgets per target and row (default: [tool.swarmvm.footprint] of ./pyproject.toml).")
+@click.option("--baseline", "baseline_path", type=click.Path(),
+              help="An earlier --json report: show each row's change in bytes and per cent.")
+@click.option("--format", "report_format", type=click.Choice(["markdown", "junit"]), default="markdown",
+              show_default=True, help="markdown: the table (changes first against a baseline); junit: JUnit XML.")
+@click.option("--fail-on-growth", type=FiniteFloat(min=0), metavar="PCT",
+              help="Exit with status 1 when a column of a row grew by more than PCT per cent on the baseline.")
+@click.option("--chart", "chart_path", type=click.Path(), help="Also draw flash and RAM per row as an SVG file.")
+@click.option("--runtime-sizes", is_flag=True, help="Also list the runtimes' source sizes (the project's own figures).")
 @click.option("--kilobot-flash", default=28672, show_default=True, type=click.IntRange(0),
               help="Flash a Kilobot image may use (bytes below the bootloader).")
 @click.option("--kilobot-stack", default=1024, show_default=True, type=click.IntRange(0),
               help="SRAM a Kilobot image must leave for the stack (of 2,048 bytes).")
 @click.option("--vm-limit", default=100000, show_default=True, type=click.IntRange(0),
               help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
+@click.option("--indirect", multiple=True, metavar="CALLER=TARGET,...",
+              help="What an indirect call in CALLER may reach, for the worst-case stack (repeatable); "
+                   "an undeclared one makes the bound unknown.")
 @reports_errors
-def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, kilobot_stack: int, vm_limit: int) -> None:
-    """Report flash and static RAM of linked VM images, split into VM core, tables and application.
+def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | None, baseline_path: str | None,
+              report_format: str, fail_on_growth: float | None, chart_path: str | None, runtime_sizes: bool,
+              kilobot_flash: int, kilobot_stack: int, vm_limit: int, indirect: tuple[str, ...]) -> None:
+    """Report flash, static RAM and worst-case stack of linked VM images, split into VM core,
+    tables and application.
 
     ELFS are linked images named <supervisor>.elf; the target comes from the machine (AVR:
-    kilobot, ARM: capbot). Prints Markdown (docs/footprint.md); exits with status 1 and a
-    one-line reason when an image exceeds a limit."""
+    kilobot, ARM: capbot); the stack from the -fstack-usage files beside them. Prints Markdown or
+    JUnit XML (docs/footprint.md); exits with status 1 and one line per row over a limit or
+    budget, or grown past --fail-on-growth."""
+    if fail_on_growth is not None and baseline_path is None:
+        raise click.BadOptionUsage("--fail-on-growth", "growth is measured against a --baseline: give one")
+    if budget_path is None and Path(fp_budget.PYPROJECT).is_file():
+        budget_path = fp_budget.PYPROJECT
+    limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
     try:
-        rows = api.measure_footprint(elfs)
+        report = api.footprint_report(list(elfs), budget=budget_path, baseline=baseline_path,
+                                      fail_on_growth=fail_on_growth, limits=limits, indirect=indirect)
     except fp.FootprintError as exc:
         terminal.fail(exc)
-    limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
-    if json_path:       # first: a --json that cannot be written ends the command before any output
-        target = Path(json_path).absolute()
-        write_outputs(target.parent, {target.name: (fp.report_json(rows, limits).encode(), False)}, option="--json")
-    terminal.lines(fp.report_markdown(rows, limits).removesuffix("\n"))
-    problems = fp.violations(rows, limits)
-    if problems:
-        more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
-        terminal.message("footprint", "%s%s" % (problems[0], more))
+    # first: a file that cannot be written ends the command before any output
+    for option, path, text in (("--json", json_path, lambda: fp_report.json_report(report, runtime_sizes)),
+                               ("--chart", chart_path, lambda: svg_chart(report))):
+        if path:
+            target = Path(path).absolute()
+            write_outputs(target.parent, {target.name: (text().encode(), False)}, option=option)
+    if report_format == "junit":
+        terminal.lines(fp_report.junit_report(report).removesuffix("\n"))
+    else:
+        terminal.lines(fp_report.markdown_report(report, runtime_sizes).removesuffix("\n"))
+    failures = report.failures()
+    for failure in failures:
+        terminal.message("footprint", failure)
+    if failures:
         sys.exit(1)
 
 
@@ -188,7 +236,8 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, kilobot_flash: int, 
               help="A result that joins the output set, in order (repeatable; default: the script's export, "
                    "else every SupC result).")
 @click.option("--minimise", is_flag=True, help="Minimise each output supervisor (libFAUDES StateMin).")
-@click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True)
+@click.option("-f", "--format", "fmt", type=click.Choice(["yaml", "gen"]), default="yaml", show_default=True,
+              help="Write the supervisors as one Nadzoru 2 supervisor.yaml, or as libFAUDES .gen files.")
 @click.option("-o", "--output", required=True,
               help="yaml: the supervisor.yaml to write; gen: a directory for one .gen per supervisor.")
 @max_states_option("each Sync or SupC step, checked before libFAUDES runs it,")
@@ -221,7 +270,8 @@ def equiv(a: str, b: str, max_states: int) -> None:
 
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
-@click.option("-f", "--format", "fmt", type=click.Choice(FORMATS), required=True)
+@click.option("-f", "--format", "fmt", type=click.Choice(FORMATS), required=True,
+              help="yaml: Nadzoru 2 YAML; gen: libFAUDES; dot, svg: Graphviz pictures.")
 @click.option("-o", "--output", required=True, help="yaml: the file to write; gen, dot, svg: a directory.")
 @click.option("--name", help="Stem of the files written (default: the input's file stem).")
 @click.option("--product-limit", default=200, show_default=True, type=click.IntRange(0),
@@ -237,6 +287,30 @@ def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, pro
     for path in written:
         terminal.line(path)
 
+
+
+@main.command()
+@click.argument("supervisor")
+@click.argument("traces", nargs=-1)
+@click.option("-o", "--output", required=True, help="The HTML file to write.")
+@click.option("--name", help="The page's title (default: the supervisor's file stem).")
+@click.option("--compare", is_flag=True, help="Two traces of the same supervisors: find and show the first step "
+                                              "where they differ, side by side.")
+@click.option("--first-step", default=1, show_default=True, type=click.IntRange(1),
+              help="The first step the page keeps in full (a page keeps %d robot-steps; docs/inspect.md)."
+                   % ROBOT_STEPS)
+@reports_errors
+def inspect(supervisor: str, traces: tuple[str, ...], output: str, name: str | None, compare: bool,
+            first_step: int) -> None:
+    """Write one offline HTML page replaying traces against the supervisors drawn.
+
+    SUPERVISOR is a supervisor (.yaml, .xml...); each TRACE is a canonical trace of one robot
+    (swarmvm trace, the C host program, simavr, ARGoS: docs/conformance.md)."""
+    page = api.inspect(supervisor, traces, output, name=name, compare=compare, first_step=first_step)
+    terminal.line(page.path)
+    if page.kept < page.total:
+        terminal.note("%d of %d robot-steps kept in full (the rest summarised): --first-step %d writes the next page"
+                      % (page.kept, page.total, first_step + window(len(traces))))
 
 main.add_command(studies_cli.sim)
 main.add_command(studies_cli.sweep)

@@ -14,7 +14,9 @@ Unprintable and (where the context needs ASCII) non-ASCII characters are written
 escapes (``\\n``, ``\\x1b``, ``\\u202e``), so what a person reads names the character."""
 
 import html as _html
+import json
 import re
+from typing import Any
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]*\Z")
@@ -140,6 +142,18 @@ def html(text: str) -> str:
     """``text`` as HTML text or a quoted attribute value: unprintable characters shown as
     their escapes, then ``& < > " '`` as entities."""
     return _html.escape(terminal(text), quote=True)
+
+
+_SCRIPT_JSON_ESCAPES = {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028", "\u2029": "\\u2029"}
+
+
+def script_json(value: Any) -> str:
+    """``value`` as JSON text that can sit inside an HTML ``<script>`` element: ``<``, ``>`` and
+    ``&`` (and the two line separators JavaScript once refused) written as ``\\u`` escapes, so
+    no name, ``</script>`` included, can end the element or open a comment. Keys sorted: the
+    same value, the same bytes."""
+    text = json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    return "".join(_SCRIPT_JSON_ESCAPES.get(c, c) for c in text)
 
 
 def identifier(text: str) -> str:

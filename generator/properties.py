@@ -138,9 +138,10 @@ def check_properties(model: Model, max_states: int = DEFAULT_MAX_STATES) -> Repo
     return Report(len(product.vectors), tuple(findings))
 
 
-def format_report(name: str, report: Report, examples: int = 3) -> str:
-    """The report as Markdown: per check, the number of findings and the first few, each with
-    the shortest event sequence that reaches it."""
+def format_report(name: str, report: Report, examples: int | None = 3) -> str:
+    """The report as Markdown: per check, the number of findings and the first ``examples``
+    (every one when None), each with the shortest event sequence that reaches it; a cut list
+    ends with how many are left out."""
     lines = ["## %s: product of %d state(s)" % (terminal(name), report.states)]     # a name is one line
     for check in CHECKS:
         found = report.of(check)
@@ -148,6 +149,6 @@ def format_report(name: str, report: Report, examples: int = 3) -> str:
         for finding in found[:examples]:
             after = " after %s" % " ".join("EV_" + e for e in finding.word) if finding.word else ""
             lines.append("  - %s%s" % (finding.detail, after))
-        if len(found) > examples:
-            lines.append("  - ... and %d more" % (len(found) - examples))
+        if examples is not None and len(found) > examples:
+            lines.append("  - ... and %d more (check --properties --all lists them)" % (len(found) - examples))
     return "\n".join(lines) + "\n"

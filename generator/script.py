@@ -7,11 +7,14 @@ comment line."""
 import os
 import random
 import stat
+import sys
 
-from .errors import InputError, read_input
+from .errors import MAX_BYTES, InputError, read_input
 
 MAX_STEPS = 10 ** 7             # steps in a script: what ``swarmvm script --steps`` writes at most
 MAX_LINE_BYTES = 1 << 17        # a line naming each of 255 events of 255 characters fits
+STDIN = "-"                     # the script name that means standard input (``trace --script -``)
+STDIN_NAME = "<stdin>"          # how messages name it
 
 
 def parse_lines(path, lines, names, controllable):
@@ -39,7 +42,7 @@ def parse_script(path, text, names, controllable):
     return list(parse_lines(path, text.splitlines(), names, controllable))
 
 
-def _file_lines(path):
+def file_lines(path):
     """The lines of a regular file, decoded one at a time (InputError for a line that is not
     UTF-8 or longer than MAX_LINE_BYTES)."""
     try:
@@ -60,27 +63,41 @@ def _file_lines(path):
         raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
 
 
+def _stdin_bytes():
+    """Standard input's bytes, refused past errors.MAX_BYTES as a pipe given by name is."""
+    data = sys.stdin.buffer.read(MAX_BYTES + 1)
+    if len(data) > MAX_BYTES:
+        raise InputError(STDIN_NAME, "", "over the %d-byte limit" % MAX_BYTES)
+    return data
+
+
+def _decoded(path, data):
+    """A whole script's bytes as text (InputError when they are not UTF-8)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
+
+
 def read_script_rows(path, names, controllable):
     """A script file's rows, to iterate once, in constant memory: a regular file is read twice,
     line by line, first to refuse bad input (InputError, before any row) and MAX_STEPS or more
     steps, then for the rows; anything else (a pipe, a device) is read whole, within
-    errors.MAX_BYTES, as every other input is."""
+    errors.MAX_BYTES, as every other input is; :data:`STDIN` reads standard input so, once."""
+    if path == STDIN:
+        return iter(parse_script(STDIN_NAME, _decoded(STDIN_NAME, _stdin_bytes()), names, controllable))
     try:
         regular = stat.S_ISREG(os.stat(path).st_mode)
     except OSError as exc:
         raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
     if not regular:
-        try:
-            text = read_input(path).decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
-        return iter(parse_script(path, text, names, controllable))
+        return iter(parse_script(path, _decoded(path, read_input(path)), names, controllable))
     steps = 0
-    for _ in parse_lines(path, _file_lines(path), names, controllable):
+    for _ in parse_lines(path, file_lines(path), names, controllable):
         steps += 1
         if steps > MAX_STEPS:
             raise InputError(path, "", "script of over %d steps" % MAX_STEPS)
-    return parse_lines(path, _file_lines(path), names, controllable)
+    return parse_lines(path, file_lines(path), names, controllable)
 
 
 def script_lines(rows, names):

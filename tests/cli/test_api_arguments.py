@@ -67,8 +67,18 @@ TABLE = {
         ("script_path", MISSING, api.InputError, MISSING), ("seed", -1, api.InputError, "seed"),
         ("input_mode", "both", api.InputError, "input_mode"), ("control", "never", api.InputError, "control"),
         ("policy", "best", api.InputError, "policy"), ("policy", 0, TypeError, "policy")]),
-    "measure_footprint": (dict(elfs=["x.elf"]), file_list("elfs", missing=FootprintError)),
-    "check_properties": (dict(paths=[EXAMPLE]), file_list("paths") + MAX_STATES),
+    "measure_footprint": (dict(elfs=["x.elf"]), file_list("elfs", missing=FootprintError) + [
+        ("indirect", "svm_step=f", TypeError, "indirect"), ("indirect", ["svm_step"], api.InputError, "indirect[0]")]),
+    "footprint_report": (dict(elfs=["x.elf"]), file_list("elfs", missing=FootprintError) + [
+        ("budget", "", api.InputError, "budget"), ("budget", Path("b.toml"), TypeError, "budget"),
+        ("budget", MISSING, api.InputError, MISSING), ("baseline", "in\0put.json", api.InputError, "baseline"),
+        ("baseline", MISSING, api.InputError, MISSING), ("fail_on_growth", -1, api.InputError, "fail_on_growth"),
+        ("fail_on_growth", math.nan, api.InputError, "fail_on_growth"), ("fail_on_growth", "5", TypeError, "fail_on_growth"),
+        ("fail_on_growth", 5.0, api.InputError, "fail_on_growth: growth is measured against a baseline"),
+        ("limits", {"vm": 1}, TypeError, "limits"), ("indirect", [3], TypeError, "indirect[0]"),
+        ("indirect", ["=f"], api.InputError, "indirect[0]")]),
+    "check_properties": (dict(paths=[EXAMPLE]), file_list("paths") + MAX_STATES + [
+        ("all_findings", "yes", TypeError, "all_findings")]),
     "equivalent": (dict(a=EXAMPLE, b=EXAMPLE), one_file("a") + one_file("b") + MAX_STATES + [
         ("b", MISSING, api.InputError, MISSING)]),
     "write_export": (dict(model=COMPILED.model, name="m", fmt="yaml", output="out.yaml"), one_file("output") + MAX_STATES + [
@@ -83,6 +93,12 @@ TABLE = {
         ("script_path", MISSING, api.InputError, MISSING), ("script_path", "", api.InputError, "script_path"),
         ("statements", "S = SupC(G, K)", TypeError, "statements"), ("exports", [1], TypeError, "exports[0]"),
         ("minimise", "no", TypeError, "minimise"), ("fmt", "dot", api.InputError, "fmt")]),
+    "inspect": (dict(supervisor=EXAMPLE, traces=[], output="out.html"), one_file("supervisor") + one_file("output") + [
+        ("supervisor", MISSING, api.InputError, MISSING), ("traces", "r.trace", TypeError, "traces"),
+        ("traces", [MISSING], api.InputError, MISSING), ("traces", ["r\0.trace"], api.InputError, "traces[0]"),
+        ("traces", [Path("r.trace")], TypeError, "traces[0]"), ("name", 1, TypeError, "name"),
+        ("compare", "yes", TypeError, "compare"), ("compare", True, api.InputError, "compare"),
+        ("first_step", 0, api.InputError, "first_step"), ("first_step", 1.5, TypeError, "first_step")]),
 }
 
 CASES = [(name, param, value, error, text) for name, (_good, bad) in TABLE.items() for param, value, error, text in bad]
