@@ -7,7 +7,8 @@ CMakeLists.txt against real ARGoS (scripts/argos.sh finds it or builds it once) 
 2. The same experiment with a random event script (`swarmvm script`) standing in for those
    sensors (<report script=...>) and traces on: the summaries, then one verdict comparing every
    robot's trace with `swarmvm trace` for the script and the robot's VM seed (the experiment's
-   random_seed XOR FNV-1a of its id).
+   random_seed XOR FNV-1a of its id); then the inspector's page of those traces, one lane per
+   robot (`swarmvm inspect`, docs/inspect.md), whose path it prints.
 
 Exit status 1 when ARGoS is missing or fails, or on any difference."""
 
@@ -24,6 +25,7 @@ os.environ["PATH"] = os.path.dirname(sys.executable) + os.pathsep + os.environ["
 
 from argos_project import (build, experiment, find_argos, generate, reference_trace,  # noqa: E402
                            robot_lines, robot_seed, run_argos, write_script)
+from swarmvm import api  # noqa: E402
 
 
 def run(project, experiment_file):
@@ -74,6 +76,12 @@ def main():
     if differ:
         sys.exit("argos-demo: the traces of %s differ from swarmvm trace (see %s)" % (", ".join(differ), out))
     print("every robot's trace identical to the Python VM (swarmvm trace --seed random_seed^FNV-1a(id))")
+    traces = []
+    for robot, lines in sorted(robot_lines(log, "trace").items()):
+        traces.append(out / (robot + ".trace"))
+        traces[-1].write_text("".join(line + "\n" for line in lines))
+    page = api.inspect(args.example, [str(t) for t in traces], str(out / "inspect.html"), name=args.name)
+    print("inspector page of the %d robots' traces: %s (docs/inspect.md)" % (len(traces), page.path))
 
 
 if __name__ == "__main__":
