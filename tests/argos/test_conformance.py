@@ -5,13 +5,10 @@ options, and the robot's VM seed: the experiment's random_seed XOR FNV-1a of the
 The swarm's traces, one per robot, also make an inspector page (docs/inspect.md) whose every
 step holds the states each robot's trace gives."""
 
-import json
-import re
-
 import pytest
 from argos_project import experiment, reference_trace, robot_lines, robot_seed, run_argos, write_script
 
-from swarmvm import api
+from conformance.inspected import inspected_states, states_of
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]
 
@@ -40,20 +37,8 @@ def test_every_robot_traces_the_reference(request, built, options, tmp_path):
     for robot, lines in traces.items():
         assert len(lines) == STEPS
         assert lines == expected[robot], robot
-    assert inspected_states(project.supervisor, traces, tmp_path) == {
-        robot: [[int(s) for s in line.split()[2].split(",")] for line in lines] for robot, lines in traces.items()}
+    assert inspected_states(project.supervisor, traces, tmp_path) == states_of(traces)
 
-
-def inspected_states(supervisor, traces, folder):
-    """{robot: the states of each step} as the inspector's page for ``traces`` holds them."""
-    files = []
-    for robot, lines in sorted(traces.items()):
-        (folder / (robot + ".trace")).write_text("".join(line + "\n" for line in lines))
-        files.append(str(folder / (robot + ".trace")))
-    api.inspect(str(supervisor), files, str(folder / "swarm.html"))
-    page = (folder / "swarm.html").read_text()
-    data = json.loads(re.search(r'<script id="data" type="application/json">(.*?)</script>', page, re.S).group(1))
-    return {robot: [data["vectors"][v] for v in run["v"][1:]] for robot, run in zip(sorted(traces), data["runs"])}
 
 
 def test_script_naming_a_controllable_event_stops_the_experiment(energy_worker):

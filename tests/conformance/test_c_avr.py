@@ -17,6 +17,7 @@ import pytest
 from checkout import FIRMWARE
 from conformance import c_harness
 from conformance._c_compare import mismatches
+from conformance.inspected import inspected_states, states_of
 from conformance.cases import SUPERVISORS, Batch, Run, batch, supervisor_yaml
 from conformance.test_widest_model import MODEL as WIDEST
 from swarmvm.pipeline import compile_inputs
@@ -32,6 +33,8 @@ def test_avr_trace_equals_reference(path, tmp_path):
     traces, info = c_harness.parse(c_harness.run_avr(elf))
     passes = (0,) + ((1,) if loaded else ()) + ((2,) if eeprom else ())
     assert mismatches(b, traces, info, passes) == []
+    runs = {"run%d" % run: lines for (step_pass, run), lines in traces.items() if step_pass == 0}
+    assert inspected_states(path, runs, tmp_path) == states_of(runs)     # the inspector's page of the AVR's runs
 
 
 def test_avr_loaded_passes_run_for_the_example(tmp_path):
