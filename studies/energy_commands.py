@@ -4,10 +4,12 @@ are ``swarmvm bounds energy``, in cli.py). Registered on the study command group
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import click
 
 from .. import terminal
+from ..errors import InputError
 from ..options import FiniteFloat
 from .energy_replenishment.params import MAX_DURATION_S
 from .cli import WORK_RATE, need_studies_extra, plot, sim, sweep
@@ -67,16 +69,20 @@ def fail(message: str, status: int = 2):
 @rate_options
 @click.option("--seed", default=1, show_default=True, type=click.IntRange(0, 2 ** 31 - 1), help="ARGoS random seed.")
 @click.option("--trace", type=click.Path(dir_okay=False), default=None, help="Write every robot's step as CSV here.")
+@click.option("--vm-traces", type=click.Path(file_okay=False), default=None,
+              help="Write each robot's VM trace into this folder as SUPERVISOR/ROBOT.trace (swarmvm inspect reads them).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def sim_energy(strategy, workers, chargers, seed, trace, as_json, **values):
+def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **values):
     """Energy replenishment: one 600-s trial in real ARGoS (the study plugin is built once)."""
     from .energy_replenishment import plugin, trial
     params = params_from(values, strategy=strategy, workers=workers, chargers=chargers if strategy == "mobile" else 0,
                          seed=seed)
     try:
-        result = trial.run(params, trace=trace)
+        result = trial.run(params, trace=trace, vm_traces=vm_traces and Path(vm_traces).absolute())
     except (plugin.BuildError, trial.TrialError) as exc:
         fail(str(exc), 1)
+    except InputError as exc:           # --vm-traces cannot be written there
+        terminal.fail(exc)
     if as_json:
         terminal.line(json.dumps(result, sort_keys=True))
         return

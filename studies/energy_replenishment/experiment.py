@@ -22,7 +22,8 @@ def _fmt(value: float) -> str:
     return "%.10g" % value
 
 
-def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float, baseline: bool) -> None:
+def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float, baseline: bool,
+                vm_traces: bool) -> None:
     element = ET.SubElement(parent, "energy_idle_controller" if baseline else kind + "_controller", id=kind,
                             library=library)
     actuators = ET.SubElement(element, "actuators")
@@ -34,7 +35,7 @@ def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity
     ET.SubElement(sensors, "epuck_proximity", implementation="default", show_rays="false")
     params = ET.SubElement(element, "params")
     ET.SubElement(params, "options", inputs="level", control="after-inputs", policy="uniform")
-    ET.SubElement(params, "report", trace="false", summary="false")
+    ET.SubElement(params, "report", trace="true" if vm_traces else "false", summary="false")
     ET.SubElement(params, "energy", dict(capacity=_fmt(capacity), move=_fmt(p.per_step(p.move_rate)),
                                          core=_fmt(p.per_step(p.core_rate)), speed=_fmt(p.speed_cms),
                                          noise=_fmt(p.steering_noise), **MOTION))
@@ -50,10 +51,19 @@ def _robots(arena: ET.Element, prefix: str, kind: str, count: int) -> None:
     ET.SubElement(epuck, "controller", config=kind)
 
 
-def experiment(p: Params, library: Path, result: Path, trace: Path | None = None, baseline: bool = False) -> str:
+def robot_kinds(p: Params) -> dict[str, str]:
+    """{robot id prefix: its controller, named after the supervisor it runs}: workers ``w0``,
+    ``w1``...; with the mobile strategy, chargers ``c0``..."""
+    worker = "energy_worker" if p.strategy == "fixed" else "energy_worker_mc"
+    return {"w": worker, "c": "energy_charger"} if p.strategy == "mobile" else {"w": worker}
+
+
+def experiment(p: Params, library: Path, result: Path, trace: Path | None = None, baseline: bool = False,
+               vm_traces: bool = False) -> str:
     """The experiment file's text. ``library``: the study plugin (without its suffix, as ARGoS
     takes it); ``result``: where the loop functions write the JSON result; ``trace``: an
-    optional per-step CSV; ``baseline``: every robot runs the empty controller (benchmarks)."""
+    optional per-step CSV; ``baseline``: every robot runs the empty controller (benchmarks);
+    ``vm_traces``: every robot logs its VM's canonical trace line each step (``trace ID: LINE``)."""
     root = ET.Element("argos-configuration")
     framework = ET.SubElement(root, "framework")
     ET.SubElement(framework, "system", threads="0")
@@ -61,9 +71,9 @@ def experiment(p: Params, library: Path, result: Path, trace: Path | None = None
                   random_seed=str(p.seed))
     controllers = ET.SubElement(root, "controllers")
     worker = "energy_worker" if p.strategy == "fixed" else "energy_worker_mc"
-    _controller(controllers, worker, str(library), p, p.capacity, baseline)
+    _controller(controllers, worker, str(library), p, p.capacity, baseline, vm_traces)
     if p.strategy == "mobile":
-        _controller(controllers, "energy_charger", str(library), p, p.charger_capacity, baseline)
+        _controller(controllers, "energy_charger", str(library), p, p.charger_capacity, baseline, vm_traces)
     loop = ET.SubElement(root, "loop_functions", library=str(library), label="energy_loop_functions")
     ET.SubElement(loop, "energy", move=_fmt(p.per_step(p.move_rate)), work=_fmt(p.per_step(p.work_rate)),
                   core=_fmt(p.per_step(p.core_rate)), charge=_fmt(p.per_step(p.charge_rate)),
@@ -78,9 +88,8 @@ def experiment(p: Params, library: Path, result: Path, trace: Path | None = None
                                  ("west", "%s, 0, 0" % _fmt(-(side + WALL) / 2), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side)))):
         box = ET.SubElement(arena, "box", id="wall_" + name, size=size, movable="false")
         ET.SubElement(box, "body", position=position, orientation="0, 0, 0")
-    _robots(arena, "w", worker, p.workers)
-    if p.strategy == "mobile":
-        _robots(arena, "c", "energy_charger", p.chargers)
+    for prefix, kind in robot_kinds(p).items():
+        _robots(arena, prefix, kind, p.workers if prefix == "w" else p.chargers)
     engines = ET.SubElement(root, "physics_engines")
     ET.SubElement(engines, "dynamics2d", id="dyn2d")
     media = ET.SubElement(root, "media")
