@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from conftest import EXAMPLE, FLIPFLOP, NETWORK_WORKER, SCREENSHOTS, trace_lines, write_trace
+from inspect_cases import EXAMPLE, FLIPFLOP, NETWORK_WORKER, SCREENSHOTS, trace_lines, write_trace
 from swarmvm import api
 
 CURRENT = """return Array.from(document.querySelectorAll('figure.sup')).map(function (f) {

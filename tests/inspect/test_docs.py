@@ -7,7 +7,7 @@ import json
 import re
 import subprocess
 
-from conftest import ROOT, SCREENSHOTS, trace_lines
+from inspect_cases import ROOT, SCREENSHOTS, trace_lines
 
 DOC = ROOT / "docs" / "inspect.md"
 

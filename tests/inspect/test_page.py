@@ -10,7 +10,7 @@ from html.parser import HTMLParser
 
 import pytest
 
-from conftest import EXAMPLE, FLIPFLOP, NETWORK_WORKER, ROOT, swarmvm, trace_lines, write_trace
+from inspect_cases import EXAMPLE, FLIPFLOP, NETWORK_WORKER, ROOT, swarmvm, trace_lines, write_trace
 from swarmvm import api, inspect_page
 from swarmvm.escape import script_json
 from swarmvm.inspect_page import ASSETS
