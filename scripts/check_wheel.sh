@@ -13,6 +13,8 @@ trap 'rm -rf "$work"' EXIT
 
 "$editable/bin/python" -m build --wheel --outdir "$work/dist" "$root" >"$work/build.log" 2>&1 \
   || { cat "$work/build.log"; exit 1; }
+# The metadata builds without a warning (setuptools' deprecations, data folders it would ignore).
+if grep -E "WARNING|[Dd]eprecat" "$work/build.log"; then echo "wheel-check: the wheel build warns (above)"; exit 1; fi
 python3 -m venv "$work/venv"
 "$work/venv/bin/python" -m pip install -q --disable-pip-version-check "$work"/dist/swarmvm-*.whl pytest hypothesis
 echo "wheel-check: installed $(basename "$work"/dist/swarmvm-*.whl) into a fresh venv"
