@@ -56,4 +56,12 @@ bench: setup footprint
 clean:
 	rm -rf $(BUILD)
 
+# The per-area rules of mk/*.mk run the venv's Python and CLI: each sets up first, as test and
+# demo do, so that it works on a fresh clone (tests/cli/test_make_targets.py). A rule whose own
+# line lists files to build names setup there, first (emulate, footprint): make builds those first.
+SET_UP_FIRST := gen firmware argos argos-demo kilolib kilobot-board kilobot-firmware capbot-firmware \
+	kilobot-swap-demo models learning-size uav-runs uav-grid energy-grid \
+	bench-c-host bench-m4 bench-cpp bench-avr bench-learning bench-drone bench-energy
+$(SET_UP_FIRST): setup
+
 -include mk/*.mk

@@ -17,7 +17,7 @@ EMULATE_LINES ?= 6
 
 EMULATE_PAGE_MODEL ?= uav
 
-emulate: $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/logic-vm.elf $(BUILD)/capbot/$(EMULATE_PAGE_MODEL)-logic.hex
+emulate: setup $(BUILD)/capbot/energy_worker.elf $(BUILD)/capbot/logic-vm.elf $(BUILD)/capbot/$(EMULATE_PAGE_MODEL)-logic.hex
 	@echo "== Kilobot application, simavr ATmega328P, given a new supervisor at run time:"
 	@$(MAKE) -s --no-print-directory kilobot-swap-demo
 	@echo "== CapBot application, QEMU mps2-an386 (step, events fired, states, violations):"

@@ -14,7 +14,7 @@ FOOTPRINT_ELFS := $(foreach t,$(FOOTPRINT_TARGETS),$(FOOTPRINT_NAMES:%=$(if $(fi
 
 FOOTPRINT_REPORT := $(BUILD)/footprint$(if $(filter 1,$(STREAM)),-stream)
 
-footprint: $(FOOTPRINT_REPORT).md
+footprint: setup $(FOOTPRINT_REPORT).md
 	@cat $<
 
 # The Kilobot images are read where their generated Makefile built them, beside the .su files
