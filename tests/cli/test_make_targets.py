@@ -2,6 +2,7 @@
 yet, `make firmware` and the like ran `.venv/bin/python` and failed with Error 127. `make -n`
 with a venv that does not exist shows what each would run: scripts/setup.sh, before anything."""
 
+import os
 import re
 import subprocess
 
@@ -17,8 +18,11 @@ TARGETS = sorted({t for line in re.findall(r"^\.PHONY:(.*)$", MK, re.M) for t in
 
 
 def first_command(target: str, tmp_path) -> str:
+    """The first command ``make -n TARGET`` shows, as a user's own make runs it (not as a sub-make
+    of `make test`, whose MAKEFLAGS and MAKELEVEL the suite inherits)."""
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MAKELEVEL", "MFLAGS", "MAKEFILES")}
     dry = subprocess.run(["make", "-n", target, "VENV=%s" % (tmp_path / "no-venv"), "BUILD=%s" % (tmp_path / "build")],
-                         cwd=ROOT, capture_output=True, text=True, timeout=60)
+                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
     return next((line for line in dry.stdout.splitlines() if line.strip()), dry.stderr)
 
 
