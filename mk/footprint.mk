@@ -15,7 +15,7 @@ FOOTPRINT_ELFS := $(foreach t,$(FOOTPRINT_TARGETS),$(FOOTPRINT_NAMES:%=$(if $(fi
 FOOTPRINT_REPORT := $(BUILD)/footprint$(if $(filter 1,$(STREAM)),-stream)
 
 footprint: setup $(FOOTPRINT_REPORT).md
-	@cat $<
+	@cat $(FOOTPRINT_REPORT).md
 
 # The Kilobot images are read where their generated Makefile built them, beside the .su files
 # its -fstack-usage writes (the worst-case stack); FOOTPRINT_INDIRECT declares what the indirect
