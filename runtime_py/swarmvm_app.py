@@ -15,37 +15,23 @@ import swarmvm_vm
 STDIN = "-"     # the script name that means standard input, as for ``swarmvm trace --script``
 
 
-def _steps(text):
-    """A positive number of steps (argparse reports anything else as a usage error)."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError("%r is not a positive number of steps" % text)
-    return value
+def _in_range(convert, low, high, what):
+    """An argparse type: text that ``convert`` reads as a number from ``low`` to ``high`` (nan
+    and infinity never are); anything else is a usage error saying ``what`` was expected."""
+    def read(text):
+        try:
+            value = convert(text)
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError("%r is not %s" % (text, what))
+        return value
+    return read
 
 
-def _period(text):
-    """A non-negative, finite number of seconds."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = -1.0
-    if not 0 <= value < float("inf"):
-        raise argparse.ArgumentTypeError("%r is not a number of seconds (0 or more)" % text)
-    return value
-
-
-def _seed(text):
-    """A seed of the VM's 32-bit generator."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if not 0 <= value <= 0xFFFFFFFF:
-        raise argparse.ArgumentTypeError("%r is not a seed (0 to 4294967295)" % text)
-    return value
+_steps = _in_range(int, 1, float("inf"), "a positive number of steps")
+_period = _in_range(float, 0.0, sys.float_info.max, "a number of seconds (0 or more)")
+_seed = _in_range(int, 0, 0xFFFFFFFF, "a seed (0 to 4294967295)")
 
 
 def parser(description, script_help):
