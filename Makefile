@@ -50,6 +50,7 @@ demo: setup
 bench: setup footprint
 	$(PYTHON) benchmarks/python_vm.py
 	$(PYTHON) benchmarks/python_vs_baseline.py --json $(BUILD)/bench/python_vs_baseline.json
+	$(PYTHON) benchmarks/sct_exact.py --json $(BUILD)/bench/sct_exact.json
 	$(PYTHON) benchmarks/issue13.py --json $(BUILD)/bench/issue13.json
 	$(PYTHON) benchmarks/inspect_page.py --json $(BUILD)/bench/inspect_page.json
 

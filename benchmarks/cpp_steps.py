@@ -9,10 +9,19 @@ with the same flags; both builds run the same event script and check their VM's 
 the straightforward VM's before timing, so every figure times the same work. The two builds run
 alternately, ROUNDS times per supervisor, and each figure is the best round (the host is shared:
 load spikes hit single rounds). Run with `make bench` or `python benchmarks/cpp_steps.py`.
+
+Then the exact mode of the drop-in for the OpenSwarm controllers (runtime_cpp/sct.h) against
+the published sct.cpp it replaces (../shared/reference/openswarm-sct-cpp, built with yaml-cpp
+against real ARGoS): one driver (benchmarks/cpp_sct_steps.cpp, events registered as the
+published controllers do) built against each, the same flags and seed; both builds must report
+the same states before their figures count. Skipped, saying why, without ARGoS, yaml-cpp or the
+published source.
 """
 
 import argparse
 import json
+import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -22,12 +31,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from swarmvm import api  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from baseline import BASELINE, baseline_tree  # noqa: E402
+import yaml  # noqa: E402
 
 CORPUS = sorted((ROOT / "tests" / "corpus").glob("*/*.yaml"))
 FLAGS = ["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 ROUNDS = 3
+PUBLISHED = ROOT.parent / "shared" / "reference" / "openswarm-sct-cpp"
+SCT_DRIVER = ROOT / "benchmarks" / "cpp_sct_steps.cpp"
 
 
 def build(compiler, runtime, exe):
@@ -42,6 +55,63 @@ def rates(exe, steps, image):
     out = subprocess.run([str(exe), str(steps), str(image)], check=True, capture_output=True, text=True).stdout
     _, fast, slow = out.split()
     return float(fast), float(slow)
+
+
+def sct_prerequisites():
+    """(ARGoS prefix, None), or (None, why the exact-mode comparison cannot run)."""
+    if not (PUBLISHED / "sct.cpp").is_file():
+        return None, "the published sct.cpp is not in %s" % PUBLISHED
+    if shutil.which("pkg-config") is None or subprocess.run(["pkg-config", "--exists", "yaml-cpp"]).returncode != 0:
+        return None, "yaml-cpp is not installed (libyaml-cpp-dev)"
+    found = subprocess.run([str(ROOT / "scripts" / "argos.sh")], capture_output=True, text=True)
+    if found.returncode != 0:
+        return None, "no ARGoS (scripts/argos.sh: %s)" % (found.stderr.strip().splitlines() or ["exit %d" % found.returncode])[-1]
+    return Path(found.stdout.strip()), None
+
+
+def sct_rows(compiler, steps, tmp):
+    """Per corpus supervisor: the drop-in's and the published VM's exact steps per second."""
+    argos, why = sct_prerequisites()
+    if argos is None:
+        print("C++ exact mode vs the published sct.cpp: skipped, %s" % why)
+        return []
+    common = [compiler, "-std=c++17", "-O2", "-I%s" % (argos / "include")]
+    libs = ["-L%s" % (argos / "lib" / "argos3"), "-largos3core_simulator"]
+    published, dropin = tmp / "sct_published", tmp / "sct_swarmvm"
+    subprocess.run([*common, "-w", "-I%s" % PUBLISHED, str(SCT_DRIVER), str(PUBLISHED / "sct.cpp"), "-o", str(published),
+                    *libs, "-lyaml-cpp"], check=True)
+    subprocess.run([*common, *FLAGS[1:], "-I%s" % (ROOT / "runtime_cpp"), str(SCT_DRIVER), "-o", str(dropin), *libs],
+                   check=True)
+    env = dict(os.environ, LD_LIBRARY_PATH=str(argos / "lib" / "argos3"))
+    rows = []
+    for path in CORPUS:
+        folder = tmp / "sct" / path.stem
+        folder.mkdir(parents=True)
+        supervisor = folder / "supervisor.yaml"
+        shutil.copy(path, supervisor)
+        api.write_image([str(supervisor)], str(folder / "supervisor.svm"))
+        kinds = "".join(str(k) for k in yaml.safe_load(path.read_text())["ev_controllable"])
+        best = {}
+        for _ in range(ROUNDS):
+            for exe in (published, dropin):
+                out = subprocess.run([str(exe), str(steps), str(supervisor), kinds], check=True, capture_output=True,
+                                     text=True, env=env).stdout
+                _, checksum, rate = next(line for line in out.splitlines() if line.startswith(str(supervisor))).split()
+                best.setdefault(exe, []).append((checksum, float(rate)))
+        if len({checksum for runs in best.values() for checksum, _ in runs}) != 1:
+            raise SystemExit("%s: the published VM and the drop-in disagree" % path.stem)
+        now, then = (max(rate for _, rate in best[exe]) for exe in (dropin, published))
+        rows.append(dict(supervisor=path.stem, dropin=now, published=then, ratio=now / then))
+    print("C++ exact mode: the drop-in SCT (runtime_cpp/sct.h) vs the published sct.cpp, steps per second "
+          "(%s -O2, ARGoS's generator, best of %d alternating rounds of %d steps)" % (compiler, ROUNDS, steps))
+    print("| supervisor | drop-in steps/s | published steps/s | ratio |")
+    print("|---|---|---|---|")
+    for r in rows:
+        print("| %s | {:,} | {:,} | %.2f |".format(int(r["dropin"]), int(r["published"])) % (r["supervisor"], r["ratio"]))
+    ratios = [r["ratio"] for r in rows]
+    print("C++ exact summary: %.2fx the published sct.cpp's steps per second (geometric mean; %.2f-%.2f)"
+          % (geometric_mean(ratios), min(ratios), max(ratios)))
+    return rows
 
 
 def main():
@@ -82,9 +152,12 @@ def main():
     print("C++ summary: %.2fx the baseline's steps per second (geometric mean; %.2f-%.2f), %.2fx the "
           "straightforward VM's" % (geometric_mean(ratios), min(ratios), max(ratios),
                                     geometric_mean([r["ratio_straightforward"] for r in rows])))
+    with tempfile.TemporaryDirectory() as tmp:
+        exact = sct_rows(args.compiler, args.steps, Path(tmp))
     if args.json:
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=args.steps, rows=rows), indent=1) + "\n")
+        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=args.steps, rows=rows, exact=exact), indent=1)
+                                   + "\n")
 
 
 if __name__ == "__main__":

@@ -23,7 +23,8 @@ from .arguments import (checked, file_name, file_names, flag, instance, integer,
 from .equiv import compare, format_difference
 from .footprint_budget import Budgets, read_budgets
 from .footprint_delta import read_baseline
-from .footprint_stack import measure_stack, parse_indirect
+from .footprint_cycles import measure_cycles
+from .footprint_stack import STEP_ROOT, measure_stack, parse_indirect
 from .errors import InputError, read_input
 from .export import FORMATS, export_files
 from .inspect_page import Inspection, write_page
@@ -118,10 +119,12 @@ def check(paths: Sequence[str], target: str | None = None, name: str | None = No
 
 @checked(inputs=file_names, output=file_name, names=flag)
 def write_image(inputs: Sequence[str], output: str, names: bool = True) -> Compiled:
-    """Compile and write the table image to ``output`` (atomically)."""
-    compiled = compile_model(inputs, names=names)
+    """Compile and write the table image to ``output`` (atomically). A supervisor.yaml is read
+    as the published VMs read it, and its image carries what their exact mode needs (pipeline's
+    ``packed_image``: docs/compat.md)."""
+    compiled = compile_inputs(list(inputs), names=names, published=True)
     target = Path(output).absolute()
-    write_outputs(target.parent, {target.name: (compiled.ordered_image, False)})
+    write_outputs(target.parent, {target.name: (compiled.packed_image, False)})
     return compiled
 
 
@@ -215,10 +218,12 @@ def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: st
     return _vm.replay_lines(machine, rows)
 
 
-@checked(elfs=file_names, indirect=texts)
-def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = ()) -> list[fp.Footprint]:
+@checked(elfs=file_names, indirect=texts, cycles=optional(file_name))
+def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles: str | None = None) -> list[fp.Footprint]:
     """Flash, static RAM and worst-case stack of linked VM images (docs/footprint.md); ``indirect``:
-    ``CALLER=TARGET,...`` declarations of what an indirect call in CALLER may reach."""
+    ``CALLER=TARGET,...`` declarations of what an indirect call in CALLER may reach; ``cycles``:
+    an event script each image runs in the emulator for its cycles per step (its checks answered
+    through the dispatch declared for ``svm_step``)."""
     from elftools.common.exceptions import ELFError
     calls = parse_indirect(indirect)
     rows = []
@@ -226,6 +231,9 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = ()) -> list
         try:
             footprint = fp.measure(path)
             footprint.stack = measure_stack(path, footprint.target, calls)
+            if cycles is not None:
+                footprint.cycles = measure_cycles(path, footprint.target, fp.table_image(path), cycles,
+                                                  calls.get(STEP_ROOT, ()))
             rows.append(footprint)
         except ELFError as exc:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
@@ -236,14 +244,15 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = ()) -> list
 
 @checked(elfs=file_names, budget=optional(file_name), baseline=optional(file_name),
          fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.Limits"),
-         indirect=texts)
+         indirect=texts, cycles=optional(file_name))
 def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: str | None = None,
                      fail_on_growth: float | None = None, limits: fp.Limits = fp.Limits(),
-                     indirect: Sequence[str] = ()) -> fp_report.FootprintReport:
+                     indirect: Sequence[str] = (), cycles: str | None = None) -> fp_report.FootprintReport:
     """The footprint of linked images checked against ``limits`` and the budgets of the TOML file
     ``budget`` (``[tool.swarmvm.footprint]`` of a ``pyproject.toml``), compared with the JSON report
     ``baseline``, each column's growth judged against ``fail_on_growth`` per cent, indirect calls
-    resolved by the ``indirect`` declarations; the files are read first, so a bad one raises
+    resolved by the ``indirect`` declarations, each image run with the event script ``cycles``
+    for its cycles per step (measure_footprint); the files are read first, so a bad one raises
     InputError before any image is measured (docs/footprint.md).
     ``swarmvm.footprint_report`` writes it as Markdown, JUnit XML or JSON; ``failures()`` is empty
     when it passes."""
@@ -252,7 +261,7 @@ def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: s
     budgets = read_budgets(budget) if budget is not None else Budgets()
     old = read_baseline(baseline) if baseline is not None else None
     parse_indirect(indirect)
-    return fp_report.build(measure_footprint(elfs, indirect), limits, budgets, old, fail_on_growth)
+    return fp_report.build(measure_footprint(elfs, indirect, cycles), limits, budgets, old, fail_on_growth)
 
 
 @checked(paths=file_names, max_states=_MAX_STATES, all_findings=flag)

@@ -2,7 +2,9 @@
 
 Events are sorted by name and identified by their index in that order. Each supervisor's
 states are renumbered breadth-first from its initial state (which becomes 0), following
-transitions in event order; states not reached are dropped, with a warning. Supervisors keep
+transitions in event order, then from the input's current state if that is not reached (a
+supervisor.yaml's sup_current_state, where the published VMs start); states not reached are
+dropped, with a warning. Supervisors keep
 the order of the input."""
 
 from collections import deque
@@ -21,13 +23,20 @@ def canonicalise(spec):
         rows = [sorted((index[t.event], t.target, t.probability) for t in row) for row in local.states]
         number = {local.initial: 0}
         order = [local.initial]
-        queue = deque(order)
-        while queue:
-            for _, target, _ in rows[queue.popleft()]:
-                if target not in number:
-                    number[target] = len(order)
-                    order.append(target)
-                    queue.append(target)
+        # The input's current state (a supervisor.yaml's sup_current_state, where the published
+        # VMs start) is searched from too when the initial state does not reach it.
+        current = spec.current[s] if len(spec.current) == len(spec.supervisors) else local.initial
+        for start in (local.initial, current):
+            if start not in number:
+                number[start] = len(order)
+                order.append(start)
+            queue = deque([start])
+            while queue:
+                for _, target, _ in rows[queue.popleft()]:
+                    if target not in number:
+                        number[target] = len(order)
+                        order.append(target)
+                        queue.append(target)
         dropped = len(rows) - len(order)
         if dropped:
             missing = sorted(set(range(len(rows))) - set(number))
@@ -35,7 +44,8 @@ def canonicalise(spec):
             warnings.append("%s: supervisor %d: %d unreachable state(s) dropped (states %s)"
                             % (spec.source, s, dropped, shown))
         states = tuple(tuple((e, number[target], p) for e, target, p in rows[old]) for old in order)
-        supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states, tuple(order)))
+        supervisors.append(CanonicalSupervisor(frozenset(index[n] for n in local.alphabet), states, tuple(order),
+                                               number[current]))
     return Model(
         source=spec.source, events=events,
         controllable=tuple(spec.controllable[n] for n in events),

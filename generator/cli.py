@@ -5,6 +5,7 @@ Bad input ends with one line ``swarmvm: error: FILE: KEY: WHERE: MESSAGE`` on st
 exit status 2, before anything is written."""
 
 import functools
+import os
 import sys
 from pathlib import Path
 from typing import Any, Callable
@@ -48,7 +49,7 @@ def max_states_option(what: str) -> Callable[[Callable[..., Any]], Callable[...,
     (docs/limits.md); ``what`` says where the verb spends it."""
     return click.option("--max-states", default=api.DEFAULT_MAX_STATES, show_default=True, type=click.IntRange(1),
                         help="Product states (and %d transitions per state) %s may explore; past them it stops "
-                             "with a one-line error (docs/limits.md)." % (api.TRANSITIONS_PER_STATE, what))
+                             "with a one-line error." % (api.TRANSITIONS_PER_STATE, what))
 
 
 @click.group(cls=OneLineErrors, context_settings={"help_option_names": ["-h", "--help"]})
@@ -61,7 +62,7 @@ def main() -> None:
 @click.argument("files", nargs=-1, required=True)
 @click.option("--properties", is_flag=True,
               help="Check each set's design instead of printing the size table: deadlocks, lost control, "
-                   "dead events, ignored inputs, confluence (docs/models.md).")
+                   "dead events, ignored inputs, confluence.")
 @click.option("--all", "all_findings", is_flag=True,
               help="With --properties: list every finding (without it, the first 3 of each check).")
 @click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)),
@@ -96,10 +97,10 @@ def check(files: tuple[str, ...], properties: bool, all_findings: bool, target: 
 @click.option("--no-names", is_flag=True, help="Leave event names out (callbacks then bind by index).")
 @reports_errors
 def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
-    """Write the portable table image of a supervisor (docs/image-format.md)."""
+    """Write the portable table image of a supervisor: the .svm file every runtime loads."""
     compiled = api.write_image(inputs, output, names=not no_names)
     _warn(compiled.model.warnings)
-    terminal.line("%s: %d bytes" % (output, len(compiled.ordered_image)))     # what write_image wrote
+    terminal.line("%s: %d bytes" % (output, len(compiled.packed_image)))     # what write_image wrote
 
 
 @main.command()
@@ -110,7 +111,7 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 @click.option("--name", help="Model name for generated files (default: the input's file stem).")
 @click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
               help="Decide the uncontrollable pair YES/NO (e.g. capableTask/notCapableTask) with an "
-                   "online classifier on features the application supplies (docs/learning.md). Repeatable.")
+                   "online classifier on features the application supplies. Repeatable.")
 @reports_errors
 def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...]) -> None:
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
@@ -146,7 +147,8 @@ def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> No
 @main.command()
 @click.argument("inputs", nargs=-1, required=True)
 @click.option("--script", "script_path", required=True, type=click.Path(allow_dash=True),
-              help="Event script (docs/conformance.md); - reads it from standard input.")
+              help="Event script: a line per step naming the uncontrollable events that occur (- for none), "
+                   "as swarmvm script writes it; - reads it from standard input.")
 @click.option("--seed", default=1, show_default=True, type=SEED,
               help="Seed of the VM's generator, which chooses among enabled controllable events.")
 @click.option("--inputs", "input_mode", type=click.Choice(vm.INPUT_MODES), default="level", show_default=True,
@@ -188,16 +190,21 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 @click.option("--indirect", multiple=True, metavar="CALLER=TARGET,...",
               help="What an indirect call in CALLER may reach, for the worst-case stack (repeatable); "
                    "an undeclared one makes the bound unknown.")
+@click.option("--cycles", "cycles_path", type=click.Path(), metavar="SCRIPT",
+              help="Run each image with this event script (Kilobot: simavr, CPU cycles; CapBot: QEMU, "
+                   "instructions): mean and worst per step (checks answered through the dispatch declared "
+                   "with --indirect svm_step=...).")
 @reports_errors
 def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | None, baseline_path: str | None,
               report_format: str, fail_on_growth: float | None, chart_path: str | None, runtime_sizes: bool,
-              kilobot_flash: int, kilobot_stack: int, vm_limit: int, indirect: tuple[str, ...]) -> None:
+              kilobot_flash: int, kilobot_stack: int, vm_limit: int, indirect: tuple[str, ...],
+              cycles_path: str | None) -> None:
     """Report flash, static RAM and worst-case stack of linked VM images, split into VM core,
     tables and application.
 
     ELFS are linked images named <supervisor>.elf; the target comes from the machine (AVR:
     kilobot, ARM: capbot); the stack from the -fstack-usage files beside them. Prints Markdown or
-    JUnit XML (docs/footprint.md); exits with status 1 and one line per row over a limit or
+    JUnit XML; exits with status 1 and one line per row over a limit or
     budget, or grown past --fail-on-growth."""
     if fail_on_growth is not None and baseline_path is None:
         raise click.BadOptionUsage("--fail-on-growth", "growth is measured against a --baseline: give one")
@@ -206,15 +213,19 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
     limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
     try:
         report = api.footprint_report(list(elfs), budget=budget_path, baseline=baseline_path,
-                                      fail_on_growth=fail_on_growth, limits=limits, indirect=indirect)
+                                      fail_on_growth=fail_on_growth, limits=limits, indirect=indirect,
+                                      cycles=cycles_path)
     except fp.FootprintError as exc:
         terminal.fail(exc)
-    # first: a file that cannot be written ends the command before any output
-    for option, path, text in (("--json", json_path, lambda: fp_report.json_report(report, runtime_sizes)),
-                               ("--chart", chart_path, lambda: svg_chart(report))):
-        if path:
-            target = Path(path).absolute()
-            write_outputs(target.parent, {target.name: (text().encode(), False)}, option=option)
+    # first, as one transaction: a file that cannot be written ends the command before any output
+    # and leaves the other unwritten
+    files = {option: (Path(path).absolute(), text) for option, path, text in (
+        ("--json", json_path, lambda: fp_report.json_report(report, runtime_sizes)),
+        ("--chart", chart_path, lambda: svg_chart(report))) if path}
+    if files:
+        folder = Path(os.path.commonpath([target.parent for target, _ in files.values()]))
+        write_outputs(folder, {str(target.relative_to(folder)): (text().encode(), False)
+                               for target, text in files.values()}, option=", ".join(files))
     if report_format == "junit":
         terminal.lines(fp_report.junit_report(report).removesuffix("\n"))
     else:
@@ -229,7 +240,7 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
 @main.command()
 @click.argument("models", nargs=-1, required=True)
 @click.option("--script", "script_path", type=click.Path(),
-              help="Synthesis script (docs/models.md), e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
+              help="Synthesis script, one statement a line, e.g. Nadzoru 2's script.txt or Nadzoru's script.lua.")
 @click.option("-e", "--statement", "statements", multiple=True, metavar="STATEMENT",
               help="A script statement, e.g. 'S = SupC(G, K)' (repeatable; instead of --script).")
 @click.option("--export", "exports", multiple=True, metavar="NAME",
@@ -297,7 +308,7 @@ def export(inputs: tuple[str, ...], fmt: str, output: str, name: str | None, pro
 @click.option("--compare", is_flag=True, help="Two traces of the same supervisors: find and show the first step "
                                               "where they differ, side by side.")
 @click.option("--first-step", default=1, show_default=True, type=click.IntRange(1),
-              help="The first step the page keeps in full (a page keeps %d robot-steps; docs/inspect.md)."
+              help="The first step the page keeps in full (a page keeps %d robot-steps)."
                    % ROBOT_STEPS)
 @reports_errors
 def inspect(supervisor: str, traces: tuple[str, ...], output: str, name: str | None, compare: bool,
@@ -305,7 +316,7 @@ def inspect(supervisor: str, traces: tuple[str, ...], output: str, name: str | N
     """Write one offline HTML page replaying traces against the supervisors drawn.
 
     SUPERVISOR is a supervisor (.yaml, .xml...); each TRACE is a canonical trace of one robot
-    (swarmvm trace, the C host program, simavr, ARGoS: docs/conformance.md)."""
+    (as swarmvm trace, the C host program, simavr or ARGoS print it)."""
     page = api.inspect(supervisor, traces, output, name=name, compare=compare, first_step=first_step)
     terminal.line(page.path)
     if page.kept < page.total:

@@ -14,10 +14,12 @@ from .errors import InputError
 FORMAT = runtime.image_format()
 
 
-def pack(tables, source, names=True, order=None):
+def pack(tables, source, names=True, order=None, source_section=None):
     """The image bytes; InputError when the model is too large for the format, or has no events
     (automata may declare none; the format needs one). ``order`` (each event's index in the
-    source file, each global state's number in it) adds the order section (docs/image-format.md)."""
+    source file, each global state's number in it) adds the order section; ``source_section``
+    (the file's SHA-256, each supervisor's start state, each event's name as written, in
+    canonical event order) the source section (docs/image-format.md)."""
     limits = [("events", tables.num_events, FORMAT.MAX_EVENTS),
               ("supervisors", tables.num_supervisors, FORMAT.MAX_SUPERVISORS),
               ("states", tables.num_states, FORMAT.MAX_STATES),
@@ -49,6 +51,10 @@ def pack(tables, source, names=True, order=None):
     if order is not None:
         event_order, state_order = order
         sections["order"] = bytes(event_order) + b"".join(n.to_bytes(2, "little") for n in state_order)
+    if source_section is not None:
+        digest, start, written = source_section
+        sections["source"] = (digest + b"".join(s.to_bytes(2, "little") for s in start)
+                              + b"".join(bytes([len(n)]) + n.encode("ascii") for n in written))
     try:
         return FORMAT.assemble(tables.num_events, tables.num_supervisors, tables.num_states,
                                tables.num_transitions, tables.state_width, sections)

@@ -6,6 +6,7 @@ typed by the key and position it appears at, and every defect is reported as one
 :class:`~swarmvm.errors.InputError` naming file, key and supervisor / state / event.
 """
 
+import hashlib
 import os
 import re
 from fractions import Fraction
@@ -22,6 +23,8 @@ OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", 
 # An event name: the image format's name bytes (swarmvm_format.NAME_CHARS), at most its
 # MAX_NAME_LENGTH (255) of them.
 NAME = re.compile(r"[A-Za-z0-9_]{0,%d}\Z" % image_format().MAX_NAME_LENGTH)
+# An event name as the published VMs take it (exact mode, `swarmvm pack`): any visible ASCII.
+WRITTEN = re.compile(r"[\x21-\x7e]{1,255}\Z")
 INTEGER = re.compile(r"[0-9]+\Z")
 # A probability as the tools write it: a decimal (an exponent of at most two digits) or a ratio.
 PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
@@ -76,6 +79,12 @@ def bare_name(raw):
     return raw[3:] if raw.startswith("EV_") else raw
 
 
+def swarmvm_name(raw):
+    """swarmvm's name for an event the published VMs accept (:data:`WRITTEN`): the bare name
+    with each character other than a letter, digit or '_' made '_' (``EV_go-on`` is ``go_on``)."""
+    return re.sub(r"[^A-Za-z0-9_]", "_", bare_name(raw))
+
+
 class _Reader:
     """Typed access to the parsed document, raising InputError at the first defect."""
 
@@ -124,8 +133,11 @@ def show_value(value):
     return "a list" if isinstance(value, list) else "a mapping" if isinstance(value, dict) else repr(value)
 
 
-def load_supervisor(path):
-    """Read ``path`` and return :class:`Supervisors`, or raise InputError."""
+def load_supervisor(path, published=False):
+    """Read ``path`` and return :class:`Supervisors`, or raise InputError. ``published``: take
+    what the published VMs run (docs/compat.md): event names of any visible ASCII characters
+    (named by :func:`swarmvm_name`), and a state's second transition on an event dropped with a
+    warning (their search finds the first); otherwise both are refused."""
     name = path
     raw = read_input(path)
     try:
@@ -148,12 +160,13 @@ def load_supervisor(path):
         raise InputError(name, "", "not valid YAML%s: %s" % (line, getattr(exc, "problem", None) or exc))
     if not isinstance(doc, dict):
         raise InputError(name, "", "expected a mapping of keys at the top level, got %s" % show_value(doc))
-    spec = _parse(_Reader(name, doc))
+    spec = _parse(_Reader(name, doc), published)
     spec.size_bytes = len(raw)
+    spec.digest = hashlib.sha256(raw).digest()
     return spec
 
 
-def _parse(r):
+def _parse(r, published=False):
     doc = r.doc
     for key in REQUIRED:
         if key not in doc:
@@ -165,10 +178,14 @@ def _parse(r):
 
     events: list = []
     seen: dict = {}
-    for i, raw in enumerate(r.list("events", n_events, "num_events")):
-        if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
+    written = r.list("events", n_events, "num_events")
+    for i, raw in enumerate(written):
+        if published and isinstance(raw, str) and WRITTEN.match(raw):
+            bare = swarmvm_name(raw)
+        elif not isinstance(raw, str) or not NAME.match(bare_name(raw)):
             r.fail("events[%d]" % i, "%s is not an event name (at most 255 letters, digits and '_')" % show_value(raw))
-        bare = bare_name(raw)
+        else:
+            bare = bare_name(raw)
         if bare in seen:
             r.fail("events[%d]" % i, "duplicate event name (also events[%d])" % seen[bare], "event EV_%s" % bare)
         seen[bare] = i
@@ -199,18 +216,21 @@ def _parse(r):
                  for s, v in enumerate(r.list("sup_data_pos", n_sups, "num_supervisors"))]
     data = r.list("sup_data")
     index = {name: i for i, name in enumerate(events)}
+    # published: sup_data names an event as the events list writes it, or as swarmvm names it
+    as_written = dict(zip(written, events)) if published else None
     supervisors = []
     for s in range(n_sups):
         end = positions[s + 1] if s + 1 < n_sups else len(data)
-        states = _parse_block(r, data, positions[s], end, s, index, alphabets[s])
+        states = _parse_block(r, data, positions[s], end, s, index, alphabets[s], as_written, warnings)
         supervisors.append(states)
 
     inits = r.list("sup_init_state", n_sups, "num_supervisors")
     initial = [r.int(v, "sup_init_state[%d]" % s, "supervisor %d" % s, high=len(supervisors[s]) - 1)
                for s, v in enumerate(inits)]
+    current = list(initial)
     if "sup_current_state" in doc:
-        for s, v in enumerate(r.list("sup_current_state", n_sups, "num_supervisors")):
-            r.int(v, "sup_current_state[%d]" % s, "supervisor %d" % s, high=len(supervisors[s]) - 1)
+        current = [r.int(v, "sup_current_state[%d]" % s, "supervisor %d" % s, high=len(supervisors[s]) - 1)
+                   for s, v in enumerate(r.list("sup_current_state", n_sups, "num_supervisors"))]
 
     probabilistic = "sup_data_prob" in doc or "sup_data_prob_pos" in doc
     if probabilistic:
@@ -223,11 +243,14 @@ def _parse(r):
         source=os.path.basename(r.path), events=events,
         controllable=dict(zip(events, controllable)), public=dict(zip(events, public)),
         supervisors=[LocalSupervisor(alphabets[s], initial[s], supervisors[s]) for s in range(n_sups)],
-        probabilistic=probabilistic, warnings=warnings)
+        probabilistic=probabilistic, warnings=warnings, written=list(written), current=current)
 
 
-def _parse_block(r, data, start, end, s, index, alphabet):
-    """One supervisor's states from ``sup_data[start:end]``: n, then n (event, hi, lo)."""
+def _parse_block(r, data, start, end, s, index, alphabet, as_written=None, warnings=None):
+    """One supervisor's states from ``sup_data[start:end]``: n, then n (event, hi, lo).
+    ``as_written`` (published mode: the events' names as written -> swarmvm's): names are looked
+    up in it first, and a second transition on an event from a state is dropped, with a
+    warning added to ``warnings``, rather than refused."""
     if not 0 <= start <= end <= len(data):
         r.fail("sup_data_pos[%d]" % s, "position %d does not start a block inside sup_data (%d entries)"
                % (start, len(data)), "supervisor %d" % s)
@@ -247,21 +270,28 @@ def _parse_block(r, data, start, end, s, index, alphabet):
         for k in range(count):
             p = pos + 1 + 3 * k
             raw = data[p]
-            if not isinstance(raw, str) or not NAME.match(bare_name(raw)):
+            if as_written is not None and isinstance(raw, str) and raw in as_written:
+                name = as_written[raw]
+            elif not isinstance(raw, str) or not NAME.match(bare_name(raw)):
                 r.fail("sup_data[%d]" % p, "%s is not an event name" % show_value(raw), where)
-            name = bare_name(raw)
+            else:
+                name = bare_name(raw)
             at = "%s, event EV_%s" % (where, name)
             if name not in index:
                 r.fail("sup_data[%d]" % p, "event is not in events", at)
             if name not in alphabet:
                 r.fail("sup_data[%d]" % p, "event is not in the supervisor's alphabet (sup_events)", at)
-            if name in seen:
+            if name in seen and as_written is None:
                 r.fail("sup_data[%d]" % p, "nondeterministic: a second transition on this event from this state", at)
-            seen.add(name)
             hi = r.int(data[p + 1], "sup_data[%d]" % (p + 1), at, high=255)
             lo = r.int(data[p + 2], "sup_data[%d]" % (p + 2), at, high=255)
-            transitions.append(Transition(name, hi * 256 + lo))
             targets.append((p + 1, at, hi * 256 + lo))
+            if name in seen:
+                warnings.append("%s: sup_data[%d]: %s: a second transition on this event from this state; the first is "
+                                "kept, as the published VMs' search finds it" % (r.path, p, at))
+                continue
+            seen.add(name)
+            transitions.append(Transition(name, hi * 256 + lo))
         states.append(transitions)
         pos += 1 + 3 * count
     if not states:

@@ -36,6 +36,12 @@ class Supervisors:
     size_bytes: int = 0
     probabilistic: bool = False
     warnings: list = field(default_factory=list)
+    # What the published VMs read of a supervisor.yaml beyond the model (docs/compat.md): each
+    # event's name as written (``events`` holds swarmvm's names), each supervisor's
+    # ``sup_current_state`` (the published VMs start there), the SHA-256 of the file's bytes.
+    written: list = field(default_factory=list)
+    current: list = field(default_factory=list)
+    digest: bytes = b""
 
     def counts(self):
         """Events, supervisors, states, transitions as read (the seed's KPI table counts)."""
@@ -53,6 +59,7 @@ class CanonicalSupervisor:
     alphabet: frozenset          # event indices
     states: tuple
     input_states: tuple = field(default=(), compare=False)
+    start: int = field(default=0, compare=False)     # the input's current state, renumbered
 
 
 @dataclass(frozen=True)

@@ -24,8 +24,12 @@ class Compiled:
     image: bytes
     # The image with the order section too when the input is a supervisor.yaml (its event order
     # and state numbers, for the Python compatibility API's exact mode: docs/compat.md), else
-    # the image itself. `swarmvm pack` and the Python targets ship it; the VMs do not need it.
+    # the image itself. The Python targets ship it; the VMs do not need it.
     ordered_image: bytes = b""
+    # What `swarmvm pack` writes: from a supervisor.yaml, the ordered image with the source
+    # section too (the file's digest, its current states, its names as written: docs/compat.md),
+    # else the ordered image.
+    packed_image: bytes = b""
 
     @functools.cached_property
     def name(self) -> str:
@@ -55,18 +59,25 @@ def load(paths):
     """One supervisor.yaml, or one or more automata (Nadzoru 2 ``.xml``, IDES ``.xmd``, Nadzoru
     ``.nza``, libFAUDES ``.gen``; one local supervisor each, chosen by file extension; a
     directory stands for the automata in it)."""
+    return load_as(paths, published=False)
+
+
+def load_as(paths, published):
+    """:func:`load`; ``published``: a supervisor.yaml read as the published VMs read it
+    (load_supervisor)."""
     paths = expand_directories(paths)
     automata = [p for p in paths if os.path.splitext(p)[1].lower() in SUFFIXES]
     if automata and len(automata) != len(paths):
         raise InputError(paths[0], "", "give either one supervisor.yaml or automata (%s), not both" % ", ".join(SUFFIXES))
     if not automata and len(paths) != 1:
         raise InputError(paths[1], "", "a compiled supervisor is one file; give one .yaml at a time")
-    return load_automata(paths) if automata else load_supervisor(paths[0])
+    return load_automata(paths) if automata else load_supervisor(paths[0], published)
 
 
-def compile_inputs(paths, name=None, names=True):
-    """Run the whole pipeline; raises InputError on bad input."""
-    return compile_spec(load(paths), paths, name, names)
+def compile_inputs(paths, name=None, names=True, published=False):
+    """Run the whole pipeline; raises InputError on bad input. ``published``: a supervisor.yaml
+    is read as the published VMs read it (load_supervisor)."""
+    return compile_spec(load_as(paths, published), paths, name, names)
 
 
 def compile_spec(spec, paths, name=None, names=True):
@@ -75,10 +86,15 @@ def compile_spec(spec, paths, name=None, names=True):
     model = canonicalise(spec)
     tables = build_tables(model)
     image = pack(tables, spec.source, names=names)
-    ordered = image
+    ordered = packed = image
     if names and len(paths) == 1 and paths[0].lower().endswith((".yaml", ".yml")):
-        ordered = pack(tables, spec.source, names=True, order=(
-            [spec.events.index(event) for event in model.events],
-            [number for sup in model.supervisors for number in sup.input_states]))
+        positions = [spec.events.index(event) for event in model.events]
+        order = (positions, [number for sup in model.supervisors for number in sup.input_states])
+        ordered = pack(tables, spec.source, names=True, order=order)
+        # (A written name over the format's 255 bytes, `EV_` and 253 or more characters, leaves
+        # the source section out: exact mode then names events EV_<name>, as written.)
+        fits = spec.digest and all(len(name) <= 255 for name in spec.written)
+        packed = ordered if not fits else pack(tables, spec.source, names=True, order=order, source_section=(
+            spec.digest, [sup.start for sup in model.supervisors], [spec.written[i] for i in positions]))
     stem = name or os.path.splitext(os.path.basename(paths[0]))[0]
-    return Compiled(stem, paths[0], model, tables, image, ordered)
+    return Compiled(stem, paths[0], model, tables, image, ordered, packed)

@@ -762,7 +762,8 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
     /* (The order section comes only with the names: the compiler writes it with them.) */
     if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || (uint8_t)(h[SVM_AT_STATE_WIDTH] - 1u) > 1u ||
         m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u ||
-        (flags & (SVM_FLAG_ORDER | SVM_FLAG_NAMES)) == SVM_FLAG_ORDER) {
+        (flags & (SVM_FLAG_ORDER | SVM_FLAG_NAMES)) == SVM_FLAG_ORDER ||
+        (flags & (SVM_FLAG_SOURCE | SVM_FLAG_ORDER)) == SVM_FLAG_SOURCE) {
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
@@ -818,6 +819,12 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
             }
         }
         pos = section_end(pos, states, 2u, end);
+    }
+    if (flags & SVM_FLAG_SOURCE) {    /* the compatibility layers' only: skipped, bounds checked */
+        pos = section_end(pos, (uint16_t)(32u + 2u * h[SVM_AT_NUM_SUPERVISORS]), 1u, end);
+        for (i = 0; i < e && pos != PAST_END; i++) {
+            pos = pos >= end ? PAST_END : section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end);
+        }
     }
     if (pos != end) {
         return SVM_ERR_LAYOUT;

@@ -140,7 +140,8 @@ typedef uint16_t svm_state_t;
 #define SVM_FLAG_NAMES 0x01u        /* the names section is present */
 #define SVM_FLAG_PROBS 0x02u        /* the probability section is present */
 #define SVM_FLAG_ORDER 0x04u        /* the order section (source-file event indices) is present */
-#define SVM_KNOWN_FLAGS 0x07u       /* an image with any other flag bit is refused */
+#define SVM_FLAG_SOURCE 0x08u       /* the source section (the compatibility layers': skipped) is present */
+#define SVM_KNOWN_FLAGS 0x0Fu       /* an image with any other flag bit is refused */
 
 /* ---- result codes of svm_load and friends (0 = success) -------------------------------- */
 enum svm_result {

@@ -11,6 +11,13 @@
 #   swarmvm_argos_controller(<target> <source>...)
 #       a MODULE library (the controller ARGoS loads) from the given sources and the swarmvm
 #       runtime headers beside this file, linked with ARGoS's simulator and e-puck plugins.
+#
+#   swarmvm_pack(<target> <supervisor.yaml>...)
+#       a target (built by default) that packs each supervisor.yaml into the image beside it
+#       (x/supervisor.yaml -> x/supervisor.svm, what SCT("x/supervisor.yaml") reads) with
+#       `swarmvm pack`, at build time and again whenever the YAML file changes: a build never
+#       leaves a stale image (docs/compat.md, "Never stale"). Relative paths are taken from the
+#       current source folder. `swarmvm` is found on PATH, or given as -DSWARMVM_EXECUTABLE=.
 
 set(ARGOS_PREFIX "$ENV{ARGOS_PREFIX}" CACHE PATH "ARGoS install prefix (holds bin/argos3)")
 find_program(ARGOS_EXECUTABLE argos3 HINTS "${ARGOS_PREFIX}/bin")
@@ -61,4 +68,28 @@ function(swarmvm_argos_controller target)
   target_link_directories(${target} PRIVATE ${SWARMVM_ARGOS_LIBRARY_DIRS})
   target_compile_options(${target} PRIVATE -Wall -Wextra -pedantic)
   target_link_libraries(${target} argos3core_simulator argos3plugin_simulator_epuck argos3plugin_simulator_genericrobot)
+endfunction()
+
+find_program(SWARMVM_EXECUTABLE swarmvm DOC "The swarmvm compiler (swarmvm_pack)")
+
+function(swarmvm_pack target)
+  if(NOT SWARMVM_EXECUTABLE)
+    message(FATAL_ERROR "swarmvm_pack(${target}): the swarmvm program was not found: pip install swarmvm, "
+                        "or pass -DSWARMVM_EXECUTABLE=<path of swarmvm>")
+  endif()
+  set(_images "")
+  foreach(_yaml IN LISTS ARGN)
+    get_filename_component(_yaml "${_yaml}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    if(NOT _yaml MATCHES "\\.yaml$")
+      message(FATAL_ERROR "swarmvm_pack(${target}): ${_yaml} is not a supervisor.yaml")
+    endif()
+    string(REGEX REPLACE "\\.yaml$" ".svm" _image "${_yaml}")
+    add_custom_command(OUTPUT "${_image}"
+                       COMMAND "${SWARMVM_EXECUTABLE}" pack "${_yaml}" -o "${_image}"
+                       DEPENDS "${_yaml}"
+                       COMMENT "swarmvm pack ${_yaml}"
+                       VERBATIM)
+    list(APPEND _images "${_image}")
+  endforeach()
+  add_custom_target(${target} ALL DEPENDS ${_images})
 endfunction()

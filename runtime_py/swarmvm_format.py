@@ -18,7 +18,7 @@ import operator
 import struct
 from typing import Dict, List, Literal, NamedTuple, Optional, Tuple
 
-__all__ = ["ErrorCode", "Header", "Image", "ImageError", "assemble", "crc16", "read_header"]
+__all__ = ["ErrorCode", "Header", "Image", "ImageError", "Source", "assemble", "crc16", "read_header"]
 
 MAGIC = b"SVMI"
 FORMAT_VERSION = 1
@@ -57,7 +57,8 @@ MAX_IMAGE_SIZE = 0xFFFF             # L is a u16
 FLAG_NAMES = 0x01                   # the names section is present
 FLAG_PROBS = 0x02                   # the probability section is present
 FLAG_ORDER = 0x04                   # the order section is present
-KNOWN_FLAGS = FLAG_NAMES | FLAG_PROBS | FLAG_ORDER   # any other bit set: refused (ErrorCode.LAYOUT)
+FLAG_SOURCE = 0x08                  # the source section is present (only with the order section)
+KNOWN_FLAGS = FLAG_NAMES | FLAG_PROBS | FLAG_ORDER | FLAG_SOURCE   # any other bit set: refused (ErrorCode.LAYOUT)
 
 MAX_EVENTS = 0xFF
 MAX_SUPERVISORS = 0xFF
@@ -68,8 +69,13 @@ STATE_WIDTHS = (1, 2)               # bytes of a target state number
 # Sections in image order; "probs", "names" and "order" only with their flag. "order" holds, for
 # each event (canonical index), its index in the source file's event list (one byte, below the
 # event count), then for each state (global index) its number in the source file (u16): what the
-# compatibility API's exact mode steps and reports by (docs/compat.md).
-SECTIONS = ("controllable", "public", "supervisors", "states", "targets", "probs", "names", "order")
+# compatibility API's exact mode steps and reports by (docs/compat.md). "source" (only `swarmvm pack`
+# writes it, from a supervisor.yaml) holds the SHA-256 of the file's bytes (SOURCE_DIGEST_SIZE),
+# each supervisor's start state (u16, its canonical number of the file's sup_current_state), then
+# each event's name as the file writes it (u8 length + bytes): what exact mode starts from and
+# registers callbacks by, and what a loader compares with the file beside the image.
+SECTIONS = ("controllable", "public", "supervisors", "states", "targets", "probs", "names", "order", "source")
+SOURCE_DIGEST_SIZE = 32
 SUPERVISOR_RECORD = struct.Struct("<HHH")   # after the alphabet mask: first state, state count, initial state
 STATE_RECORD = struct.Struct("<H")          # after the defined mask: index of the first successor
 PROB = struct.Struct("<H")                  # Q15
@@ -131,7 +137,7 @@ def assemble(num_events: int, num_supervisors: int, num_states: int, num_transit
              sections: Dict[str, bytes]) -> bytes:
     """The image: header, ``sections`` ({name: bytes}) in SECTIONS order, CRC.
 
-    "probs", "names" and "order" are optional and set their flags. :class:`ImageError` (LENGTH) when the
+    "probs", "names", "order" and "source" are optional and set their flags. :class:`ImageError` (LENGTH) when the
     image would exceed MAX_IMAGE_SIZE."""
     body = b"".join(sections[name] for name in SECTIONS if name in sections)
     length = HEADER_SIZE + len(body) + CRC_SIZE
@@ -139,7 +145,7 @@ def assemble(num_events: int, num_supervisors: int, num_states: int, num_transit
         raise ImageError(ErrorCode.LENGTH, "table image would be %d bytes, over the format's limit of %d"
                          % (length, MAX_IMAGE_SIZE))
     flags = ((FLAG_PROBS if "probs" in sections else 0) | (FLAG_NAMES if "names" in sections else 0)
-             | (FLAG_ORDER if "order" in sections else 0))
+             | (FLAG_ORDER if "order" in sections else 0) | (FLAG_SOURCE if "source" in sections else 0))
     mask_bytes = (num_events + 7) // 8
     image = HEADER.pack(*Header(MAGIC, FORMAT_VERSION, flags, num_events, num_supervisors, num_states,
                                 num_transitions, state_width, mask_bytes, length)) + body
@@ -239,7 +245,7 @@ class Image:
                  sup_alphabet: List[int], sup_first_state: List[int], sup_num_states: List[int],
                  sup_initial: List[int], state_defined: List[int], state_first: List[int], targets: List[int],
                  probs: Optional[List[int]], names: Optional[List[str]], order: Optional[List[int]] = None,
-                 state_order: Optional[List[int]] = None) -> None:
+                 state_order: Optional[List[int]] = None, source: Optional["Source"] = None) -> None:
         self.raw = raw
         self.num_events = num_events
         self.num_supervisors = num_supervisors
@@ -256,6 +262,7 @@ class Image:
         self.names = names
         self.order = order              # source-file index of each event, or None
         self.state_order = state_order  # source-file number of each (global) state, or None
+        self.source = source            # the source section (Source), or None
 
     @classmethod
     def load(cls, path) -> "Image":
@@ -277,6 +284,9 @@ class Image:
             raise _layout_error("image flags 0x%02x: bits outside 0x%02x are reserved" % (flags, KNOWN_FLAGS))
         if flags & FLAG_ORDER and not flags & FLAG_NAMES:
             raise _layout_error("image has an order section without names: the compiler writes it only with them")
+        if flags & FLAG_SOURCE and not flags & FLAG_ORDER:
+            raise _layout_error("image has a source section without an order section: the compiler writes it only "
+                                "with one")
         probs = bool(flags & FLAG_PROBS)
         end = size - CRC_SIZE
         targets_at = (HEADER_SIZE + 2 * mask_bytes + supervisors * (mask_bytes + SUPERVISOR_RECORD.size)
@@ -284,17 +294,21 @@ class Image:
         pos = targets_at + transitions * (width + (PROB.size if probs else 0))
         if pos > end:
             raise _layout_error("image sections end at byte %d, past the checksum at byte %d" % (pos, end))
-        names = order = state_order = None
+        names = order = state_order = source = None
         order_size = events + 2 * states if flags & FLAG_ORDER else 0
         if flags & FLAG_NAMES:
-            names, pos = _names(raw, pos, end - order_size, end, events)
+            # (Behind a source section, whose length only its walk gives, the names are walked too.)
+            names, pos = (_walk_names(raw, pos, end, events) if flags & FLAG_SOURCE
+                          else _names(raw, pos, end - order_size, end, events))
             _check_names_unique(names)
         if flags & FLAG_ORDER:
             order, state_order, pos = _order(raw, pos, end, events, states)
+        if flags & FLAG_SOURCE:
+            source, pos = _source(raw, pos, end, events, supervisors)
         if pos != end:
             raise _layout_error("image sections end at byte %d, the checksum is at byte %d" % (pos, end))
         image = cls(raw, events, supervisors, *_tables(raw, supervisors, states, mask_bytes, targets_at, transitions,
-                                                       width, probs), names, order, state_order)
+                                                       width, probs), names, order, state_order, source)
         image._check_indices(states, transitions)
         return image
 
@@ -450,3 +464,29 @@ def _order(raw: bytes, pos: int, end: int, events: int, states: int) -> Tuple[Li
         raise _layout_error("image order section names an event index twice: not a permutation of the %d events"
                             % events)
     return order, list(struct.unpack_from("<%dH" % states, raw, pos + events)), after
+
+
+class Source(NamedTuple):
+    """The source section: what exact mode needs of the supervisor file beyond its order."""
+
+    digest: bytes               # SHA-256 of the supervisor file's bytes
+    start: List[int]            # each supervisor's start state (canonical local number)
+    written: List[str]          # each event's name as the file writes it (canonical event order)
+
+
+def _source(raw: bytes, pos: int, end: int, events: int, supervisors: int) -> Tuple[Source, int]:
+    """The source section at ``pos`` and the position after it; ImageError (LAYOUT) when it runs
+    past the checksum at ``end``. Its bytes are only bounds-checked, as every reader does (the C
+    reader skips it): the compatibility layers check a start state against its supervisor."""
+    names_at = pos + SOURCE_DIGEST_SIZE + 2 * supervisors
+    if names_at > end:
+        raise _layout_error("image source section runs past the checksum at byte %d" % end)
+    start = list(struct.unpack_from("<%dH" % supervisors, raw, pos + SOURCE_DIGEST_SIZE))
+    written, at = [], names_at
+    for event in range(events):
+        if at >= end or at + 1 + raw[at] > end:
+            raise _layout_error("image source section: event %d's written name runs past the checksum at byte %d"
+                                % (event, end))
+        written.append(raw[at + 1:at + 1 + raw[at]].decode("latin-1"))
+        at += 1 + raw[at]
+    return Source(raw[pos:pos + SOURCE_DIGEST_SIZE], start, written), at

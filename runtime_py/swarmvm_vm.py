@@ -15,12 +15,13 @@ __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEve
            "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
 
 import functools
+import hashlib
 import operator
 import os
 import random
 import types
 
-from swarmvm_format import FORMAT_VERSION, Q15_ONE, Image, ImageError, crc16
+from swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
 
 INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
@@ -100,14 +101,17 @@ def _poll_lines(events, wrap):
     in order, and the event of each check that is true added; ``wrap``: a check that raises
     raises CallbackError naming its event (``event_name``), else the exception as it is.
     Written out check by check because a loop over the checks cost a sixth of a step on models
-    with many inputs; a single check makes its list in one expression."""
+    with many inputs; a single check makes its list in one expression. ``fired.append`` is
+    called as a method, not through a bound ``add``: CPython 3.11 and later run a list's append
+    called so without a call frame, at half the cost."""
     if len(events) == 1:
         body = ["e = %d" % events[0]] if wrap else []
         body += ["fired = [%d] if c0(d0) else []" % events[0]]
     else:
-        body = ["fired = []", "add = fired.append"]
+        body = ["fired = []"]
         body += [line for i, event in enumerate(events)
-                 for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i), "    add(%d)" % event]]
+                 for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i),
+                                                                     "    fired.append(%d)" % event]]
     if not wrap:
         return body
     return (["e = -1", "try:"] + ["    " + line for line in body]
@@ -251,57 +255,118 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
                      + ["        " + line for line in body] + ["    return step"])
 
 
-def _exact_stepper(events, public_first, chooses, total, gate_sups):
-    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper): the
-    checks of ``events`` polled in file order (raising as in the published VM), the true ones
-    fired in file order (``public_first``: public ones first, as SCTPub), then the published
-    choice among the enabled events in file order when there are controllable events: the k-th
-    with ``k = random.randint(0, 1000000000) % n``, drawn as CPython's randint makes it (randint
-    -> randrange -> _randbelow_with_getrandbits: ``getrandbits(30)`` until at most 10^9) without
-    randint's three Python-level calls, a third of a small model's step, while ``randint`` is
-    the standard one (tests/python/test_sct_exact.py compares the random state step by step).
-    The enabled events in file order are remembered per enabled mask (SCT._file_order). A
-    callback that rebinds while the inputs fire: the choice is made out of line (SCT._choose);
-    one that loads an image ends the step (_move_lines)."""
+def _exact_inputs_lines(sole, total, public_first, acting):
+    """Source lines of the exact step that apply the inputs in ``fired`` (file indices; SCTPub:
+    public ones first, ``private`` by file index), each action right after its event's moves,
+    as _move_lines does for the canonical step but without mapping the step's events to file
+    order: ``canonical`` maps an event for its moves and its action. ``sole``: one supervisor,
+    whose state is the local ``s`` and whose column of each event is ``columns[event]`` (by
+    file index; an event outside its alphabet has a column that stays). An action that loads
+    an image ends the step there; one that rebinds leaves the rest of the step to SCT._choose
+    (its ``vm._plan is not vm_plan`` below). When no input can violate (``total``) and none
+    has an action (``acting`` false: the plan's actions, which nothing can change while only
+    moves run), the moves alone, by file index (``file_successors``): what published
+    controllers mostly are, actions on the controllable events, checks on the others."""
+    lines = ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
+    if total and not acting:
+        lines += ["    for event in fired:"]
+        lines += ["        s = columns[event][s]", "    states[0] = s"] if sole else [
+            "        for sup, column in file_successors[event]:",
+            "            states[sup] = column[states[sup]]"]
+        return lines + ["    sct.input_buffer = fired", "else:", "    sct.input_buffer = fired"]
+    lines += ["    for event in fired:", "        c = canonical[event]"]
+    if sole:
+        move = ["s = columns[event][s]"] if total else [
+            "target = columns[event][s]",
+            "if target is None:",
+            "    states[0] = s",
+            "    vm._violate(c, 0)",
+            "    states, a = vm.states, (vm._plan or vm._bound())[0]",
+            "    s = states[0]",
+            "else:",
+            "    s = target"]
+        save, load = ["    states[0] = s"], ["    s = states[0]"]
+    else:
+        move = ["for sup, column in successors[c]:", "    target = column[states[sup]]"]
+        move += ["    states[sup] = target"] if total else [
+            "    if target is None:",
+            "        vm._violate(c, sup)",
+            "        states, a = vm.states, (vm._plan or vm._bound())[0]",
+            "    else:",
+            "        states[sup] = target"]
+        save = load = []
+    lines += ["        " + line for line in move + ["if a[c] is not None:"] + save + [
+        "    vm._act(c, a[c])",
+        "    if vm._loads != loads:",
+        "        sct.input_buffer = fired[:fired.index(event) + 1]",
+        "        sct.last_events = fired[:fired.index(event) + 1]",
+        "        return",
+        "    states, a = vm.states, (vm._plan or vm._bound())[0]"] + load]
+    return lines + (["    states[0] = s"] if sole else []) + [
+        "    sct.input_buffer = fired",
+        "    if vm._plan is not vm_plan:",
+        "        return sct._choose(fired)",
+        "else:",
+        "    sct.input_buffer = fired"]
+
+
+def _exact_choice_lines(sole, gate_sups):
+    """Source lines of the published choice: the enabled controllable events in file order (one
+    supervisor: its state's entry in ``table``, SCT._sole_entry; else per enabled mask,
+    SCT._file_order), the k-th with ``k = random.randint(0, 1000000000) % n`` drawn as CPython's
+    randint makes it (randint -> randrange -> _randbelow_with_getrandbits: ``getrandbits(30)``
+    until at most 10^9) without randint's three Python-level calls while ``randint`` is the
+    standard one (tests/python/test_sct_exact.py compares the random state step by step), then
+    its moves and its action; ``last_events`` the inputs and it, a list of its own."""
+    if sole:
+        lines = ["order, afters, events = table[s] or sct._sole_entry(s)"]
+    else:
+        lines = [_mask_line(gate_sups),
+                 "order = orders.get(mask)",
+                 "if order is None:",
+                 "    order = sct._file_order(mask)"]
+    lines += ["if order:",
+              "    if rnd.randint is randint:",
+              "        draw = getrandbits(30)",
+              "        while draw > 1000000000:",
+              "            draw = getrandbits(30)",
+              "    else:",
+              "        draw = rnd.randint(0, 1000000000)"]
+    if sole:
+        lines += ["    k = draw % len(order)",
+                  "    states[0] = afters[k]",
+                  "    event = events[k]",
+                  "    choice = order[k]"]
+    else:
+        lines += ["    choice, event = order[draw % len(order)]",
+                  "    for sup, column in successors[event]:",
+                  "        states[sup] = column[states[sup]]"]
+    return lines + ["    if a[event] is not None:",
+                    "        vm._act(event, a[event])",
+                    "    sct.last_events = [*fired, choice]",
+                    "    return",
+                    "sct.last_events = fired[:]"]
+
+
+def _exact_stepper(events, public_first, chooses, total, sole, acting, gate_sups):
+    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper), in
+    the file's event indices throughout, so nothing is mapped to file order per step: the
+    checks of file events ``events`` polled in file order (raising as in the published VM), the
+    true ones applied (_exact_inputs_lines), then, when there are controllable events, the
+    published choice (_exact_choice_lines). ``sole``: one supervisor, whose state the step keeps
+    in a local and whose enabled events in file order it reads per state. A callback that
+    rebinds while the inputs fire: the choice is made out of line (SCT._choose); ``acting``:
+    some polled input has an action."""
     body = ["vm = sct.vm",
             "if vm._plan is not vm_plan:",
             "    sct._plan_exact()",
             "    return sct.run_step()"] + _poll_lines(events, False)
-    body += ["a = acts", "states = vm.states", "if fired:"]
-    body += ["    fired.sort(key=private.__getitem__)"] if public_first else []
-    body += _move_lines(False, total, ["inputs = sct.input_buffer = list(map(file_index.__getitem__, "
-                                       "fired[:fired.index(event) + 1]))",
-                                       "sct.last_events = inputs[:]",
-                                       "return"])
-    body += ["    inputs = list(map(file_index.__getitem__, fired))",
-             "    sct.input_buffer = inputs",
-             "    if vm._plan is not vm_plan:",
-             "        return sct._choose(inputs)",
-             "else:",
-             "    inputs = sct.input_buffer = []"]
-    if chooses:
-        body += [_mask_line(gate_sups),
-                 "order = orders.get(mask)",
-                 "if order is None:",
-                 "    order = sct._file_order(mask)",
-                 "if order:",
-                 "    if rnd.randint is randint:",
-                 "        draw = getrandbits(30)",
-                 "        while draw > 1000000000:",
-                 "            draw = getrandbits(30)",
-                 "    else:",
-                 "        draw = rnd.randint(0, 1000000000)",
-                 "    choice, event = order[draw % len(order)]",
-                 "    for sup, column in successors[event]:",
-                 "        states[sup] = column[states[sup]]",
-                 "    if a[event] is not None:",
-                 "        vm._act(event, a[event])",
-                 "    sct.last_events = inputs + [choice]",
-                 "    return"]
-    body += ["sct.last_events = inputs[:]"]
-    return _compiled(("exact", events, public_first, chooses, total, gate_sups),
-                     ["def make(vm_plan, acts, checks, datas, successors, controllable, gates, file_index, private, "
-                      "orders, rnd, randint, getrandbits, loads):"]
+    body += ["a = acts", "states = vm.states"] + (["s = states[0]"] if sole else [])
+    body += _exact_inputs_lines(sole, total, public_first, acting)
+    body += _exact_choice_lines(sole, gate_sups) if chooses else ["sct.last_events = fired[:]"]
+    return _compiled(("exact", events, public_first, chooses, total, sole, acting, gate_sups),
+                     ["def make(vm_plan, acts, checks, datas, canonical, successors, file_successors, columns, table,"
+                      " controllable, gates, private, orders, rnd, randint, getrandbits, loads):"]
                      + _gate_lines(gate_sups) + ["    def run_step(sct%s):" % _check_args(len(events))]
                      + ["        " + line for line in body] + ["    return run_step"])
 
@@ -713,17 +778,23 @@ class SCT:
 
     def __init__(self, filename, exact=True, **options):
         image, file_events, file_states = _compat_image(filename)
-        if exact and file_events is None:
+        if exact and file_states is None:
             raise ValueError("%s: exact mode needs the supervisor file's event order, which this image does not "
                              "keep (made from automata, or with --no-names); give the supervisor.yaml, or exact=False"
                              % filename)
         self.vm = VM(image, **options)
         self.exact = exact
         self._file_states = file_states if exact else None
-        names = [image.event_name(e) for e in range(image.num_events)]
-        # Index a caller sees -> canonical index: the file's order in exact mode, else the image's.
-        self._canonical = [names.index("EV_" + name) for name in file_events] if exact else list(range(len(names)))
-        self.EV = {names[c]: i for i, c in enumerate(self._canonical)}
+        # Index a caller sees -> canonical index: the file's order in exact mode, else the image's;
+        # the names EV holds: the file's as written in exact mode, else swarmvm's (EV_<name>).
+        self._canonical = file_events if exact else list(range(image.num_events))
+        written = image.source.written if exact and image.source is not None else None
+        self.EV = {(written[c] if written else image.event_name(c)): i for i, c in enumerate(self._canonical)}
+        if exact and image.source is not None:      # the published VMs start from sup_current_state
+            if any(s >= n for s, n in zip(image.source.start, image.sup_num_states)):
+                raise ImageError(ErrorCode.LAYOUT, "%s: image source section: a start state outside its supervisor"
+                                 % filename)
+            self.vm.states[:] = image.source.start
         self.ev_controllable = [image.controllable >> c & 1 for c in self._canonical]
         self.num_events = image.num_events
         self.num_supervisors = image.num_supervisors
@@ -733,8 +804,12 @@ class SCT:
             self._file_index = [0] * len(self._canonical)
             for i, c in enumerate(self._canonical):
                 self._file_index[c] = i
-            self._private = [0 if image.public >> c & 1 else 1 for c in range(image.num_events)]
+            self._private = [0 if image.public >> c & 1 else 1 for c in self._canonical]     # by file index
             self._orders: dict = {}     # enabled mask -> _file_order's list
+            self._sole_table: list = []     # one supervisor: per state, _sole_entry's (or None until met)
+            self._sole_columns: list = []   # one supervisor: per file event, its state after each state
+            self._file_successors: list = []    # per file event, VM.successors of its canonical index
+            self._tables_of = None          # the image the four above were made for
 
     @property
     def sup_current_state(self):
@@ -744,8 +819,15 @@ class SCT:
         return [numbers[state] for numbers, state in zip(self._file_states, self.vm.states)]
 
     def add_callback(self, event, clbk, ci, sup_data):
+        """Register the event's callback, check and data. Exact mode, as published: registering
+        again replaces all three (None included), and a check on a controllable event is
+        accepted and, as the published step polls uncontrollable events only, never called.
+        Canonical mode binds (VM.bind) and leaves a controllable event's check out."""
         canonical = self._canonical[event]
         controllable = self.vm.image.controllable >> canonical & 1
+        if self.exact:
+            self.vm.actions.pop(canonical, None)
+            self.vm.checks.pop(canonical, None)
         self.vm.bind(canonical, action=clbk, check=None if controllable else ci, data=sup_data)
 
     def run_step(self):
@@ -764,21 +846,46 @@ class SCT:
         VM's plan changes."""
         vm, canonical = self.vm, self._canonical
         vm_plan = vm._plan or vm._bound()
-        polls = [(canonical[i], vm.checks[canonical[i]], vm.data.get(canonical[i]))
+        polls = [(i, vm.checks[canonical[i]], vm.data.get(canonical[i]))
                  for i in self._checks_order if canonical[i] in vm.checks]
-        gate_sups = tuple(sup for sup, _ in vm._gates)
+        sole = vm.image.num_supervisors == 1
+        if self._tables_of is not vm.image:
+            self._tables_of = vm.image
+            self._orders.clear()
+            self._sole_table = [None] * vm.image.sup_num_states[0] if sole else []
+            self._sole_columns = [self._column(c) for c in canonical] if sole else []
+            self._file_successors = [vm.successors[c] for c in canonical]
+        gate_sups = () if sole else tuple(sup for sup, _ in vm._gates)
+        acting = any(vm_plan[0][canonical[event]] is not None for event, _, _ in polls)
         make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
-                              vm._total is not None, gate_sups)
-        step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], vm.successors,
-                    vm.image.controllable, vm._gates, self._file_index, self._private, self._orders, random,
-                    _RANDINT, random.getrandbits, vm._loads)
+                              vm._total is not None, sole, acting, gate_sups)
+        step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], canonical,
+                    vm.successors, self._file_successors, self._sole_columns, self._sole_table,
+                    vm.image.controllable, vm._gates, self._private, self._orders, random, _RANDINT,
+                    random.getrandbits, vm._loads)
         self.__dict__["run_step"] = types.MethodType(step, self)
+
+    def _column(self, event):
+        """A one-supervisor image's state after each of its states on canonical ``event``: its
+        column, None where undefined; a column that stays for an event outside its alphabet."""
+        pairs = self.vm.successors[event]
+        return pairs[0][1] if pairs else list(range(self.vm.image.sup_num_states[0]))
 
     def _file_order(self, mask):
         """The enabled events of ``mask`` in file order, as (file index, canonical index) pairs,
         remembered per mask: the published choice takes the k-th of them."""
         order = self._orders[mask] = sorted((self._file_index[e], e) for e in _bits(mask))
         return order
+
+    def _sole_entry(self, state):
+        """(the enabled controllable events of a one-supervisor image at ``state`` in file order,
+        the state after each, each one's canonical index), remembered in ``_sole_table``: the
+        published choice takes the k-th of each."""
+        columns, controllable = self._sole_columns, self.vm.image.controllable
+        order = [f for f, c in enumerate(self._canonical) if controllable >> c & 1 and columns[f][state] is not None]
+        entry = self._sole_table[state] = (order, [columns[f][state] for f in order],
+                                           [self._canonical[f] for f in order])
+        return entry
 
     def _choose(self, inputs):
         """The published choice of a step whose VM plan a callback replaced while the inputs
@@ -813,10 +920,11 @@ class SCTPub(SCT):
 
 
 def _compat_image(filename):
-    """(image, the file's bare event names in file order, each supervisor's file state numbers by
-    canonical state) for :class:`SCT`; the last two None when the image has no order section. A
-    YAML path is compiled in memory when it exists and the swarmvm compiler can be imported;
-    otherwise the ``.svm`` beside it is read, as is a ``.svm`` path."""
+    """(image, the canonical index of each of the file's events in file order, each supervisor's
+    file state numbers by canonical state) for :class:`SCT`; the last two None when the image
+    has no order section. A YAML path is compiled in memory, as the published VMs read it
+    (``swarmvm pack``'s image), when it exists and the swarmvm compiler can be imported;
+    otherwise the ``.svm`` beside it is read (_image_beside), as is a ``.svm`` path."""
     image = None
     if filename.endswith(".yaml") and os.path.exists(filename):
         try:
@@ -824,14 +932,31 @@ def _compat_image(filename):
         except ImportError:
             pass
         else:
-            image = Image.parse(compile_inputs([filename], name="sct").ordered_image)
+            image = Image.parse(compile_inputs([filename], name="sct", published=True).packed_image)
     if image is None:
-        image = Image.load(filename[:-5] + ".svm" if filename.endswith(".yaml") else filename)
+        image = _image_beside(filename) if filename.endswith(".yaml") else Image.load(filename)
     if image.order is None or image.names is None or image.state_order is None:
         return image, None, None
-    file_events = [""] * image.num_events
+    file_events = [0] * image.num_events
     for event, position in enumerate(image.order):
-        file_events[position] = image.names[event]
+        file_events[position] = event
     file_states = [image.state_order[first:first + count]
                    for first, count in zip(image.sup_first_state, image.sup_num_states)]
     return image, file_events, file_states
+
+
+def _image_beside(yaml_path):
+    """The image ``x.svm`` for ``x.yaml``, never stale: FileNotFoundError when it is missing,
+    ValueError when it records the digest of the YAML file it was packed from (docs/compat.md,
+    "Never stale") and the file beside it now has other bytes; both name the two files and
+    the command that fixes it."""
+    image_path = yaml_path[:-5] + ".svm"
+    fix = ": run swarmvm pack %s -o %s" % (yaml_path, image_path)
+    if not os.path.exists(image_path):
+        raise FileNotFoundError("cannot read table image %s for %s%s" % (image_path, yaml_path, fix))
+    image = Image.load(image_path)
+    if image.source is not None and os.path.exists(yaml_path):
+        with open(yaml_path, "rb") as handle:
+            if hashlib.sha256(handle.read()).digest() != image.source.digest:
+                raise ValueError("%s is stale: it was packed from another version of %s%s" % (image_path, yaml_path, fix))
+    return image

@@ -2,9 +2,16 @@
 // built once against the published sct.cpp (the oracle) and once against swarmvm's sct.h, the
 // two outputs must be equal. Every event gets a callback the published way (member functions);
 // checks have side effects (they draw from the controller's own generator and clear flags that
-// other checks read); each step prints the calls made and get_current_state_string().
+// other checks read); each step prints the calls made and get_current_state_string(). REGISTER
+// picks how events are registered:
+//   both     every event an action and a check (add_callback's third form), once;
+//   again    the same, then each event registered again: every other one with a check only
+//            (a controllable one too: the published VM keeps the check and never calls it), the
+//            others with an action only, which replace what the first registration gave;
+//   throws   as both, and a check sometimes throws argos::CARGoSException, which the driver
+//            catches as such, prints, and goes on stepping.
 //
-//   sct_drive SUPERVISOR.yaml pub|plain STEPS SEED
+//   sct_drive SUPERVISOR.yaml pub|plain STEPS SEED [both|again|throws]
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
@@ -12,13 +19,14 @@
 #include <string>
 #include <vector>
 
+#include <argos3/core/utility/configuration/argos_exception.h>
 #include <argos3/core/utility/math/rng.h>
 
 #include "sct.h"
 
 class Controller {
 public:
-    explicit Controller(SCT& sct) : sct_(sct) {
+    Controller(SCT& sct, const std::string& mode) : sct_(sct), throws_(mode == "throws") {
         for (const auto& entry : sct.events) names_.push_back(entry.first);
         slots_.resize(names_.size());
         for (std::size_t k = 0; k < names_.size(); ++k) {
@@ -27,11 +35,23 @@ public:
             // the half that fits the event's kind.
             sct.add_callback(this, names_[k], &Controller::Act, &Controller::Check, &slots_[k]);
         }
+        if (mode != "again") return;
+        for (std::size_t k = 0; k < names_.size(); ++k) {
+            if (k % 2 == 0) {
+                sct.add_callback(this, names_[k], NULL, &Controller::Check, &slots_[k]);
+            } else {
+                sct.add_callback(this, names_[k], &Controller::Act, NULL, &slots_[k]);
+            }
+        }
     }
 
     void Step() {
         calls_.clear();
-        sct_.run_step();
+        try {
+            sct_.run_step();
+        } catch (argos::CARGoSException& ex) {   // as a published controller would catch it
+            calls_ += std::string(" caught:") + ex.what();
+        }
         std::cout << sct_.get_current_state_string() << " |" << calls_ << "\n";
     }
 
@@ -53,7 +73,9 @@ private:
         calls_ += " c:" + names_[slot->name];
         const bool seen = flag_ == slot->name;
         if (seen) flag_ = SIZE_MAX;                       // clears what another callback set
-        return static_cast<unsigned char>(seen || Draw() % 10u < 3u);
+        const std::uint32_t draw = Draw();
+        if (throws_ && draw % 23u == 0) throw argos::CARGoSException("check of " + names_[slot->name] + " failed");
+        return static_cast<unsigned char>(seen || draw % 10u < 3u);
     }
 
     void Act(void* data) {
@@ -63,6 +85,7 @@ private:
     }
 
     SCT& sct_;
+    bool throws_;
     std::vector<std::string> names_;
     std::vector<Slot> slots_;
     std::string calls_;
@@ -71,8 +94,8 @@ private:
 };
 
 int main(int argc, char** argv) {
-    if (argc != 5) {
-        std::cerr << "usage: sct_drive SUPERVISOR.yaml pub|plain STEPS SEED\n";
+    if (argc != 5 && argc != 6) {
+        std::cerr << "usage: sct_drive SUPERVISOR.yaml pub|plain STEPS SEED [both|again|throws]\n";
         return 2;
     }
     argos::CRandom::CreateCategory("argos", static_cast<argos::UInt32>(std::strtoul(argv[4], nullptr, 10)));
@@ -82,7 +105,7 @@ int main(int argc, char** argv) {
     } else {
         sct = std::make_unique<SCT>(argv[1]);
     }
-    Controller controller(*sct);
+    Controller controller(*sct, argc == 6 ? argv[5] : "both");
     for (long k = std::strtol(argv[3], nullptr, 10); k > 0; --k) controller.Step();
     return 0;
 }

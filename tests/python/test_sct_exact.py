@@ -33,7 +33,7 @@ class PublishedStep:
         public = doc.get("ev_public", doc.get("ev_shared", [0] * len(self.events)))
         self.public = [int(p) for p in public]
         self.alphabet = [[int(x) for x in row] for row in doc["sup_events"]]
-        self.state = [int(s) for s in doc["sup_init_state"]]
+        self.state = [int(s) for s in doc.get("sup_current_state", doc["sup_init_state"])]     # where it starts
         data, starts = doc["sup_data"], doc["sup_data_pos"]
         # moves[s][state] = {event: target}, from each supervisor's block of state records
         self.moves = []
@@ -42,8 +42,11 @@ class PublishedStep:
             end = int(starts[s + 1]) if s + 1 < len(starts) else len(data)
             while pos < end:
                 count = int(data[pos])
-                table.append({self.EV[str(data[pos + 1 + 3 * k])]: int(data[pos + 2 + 3 * k]) * 256 + int(data[pos + 3 + 3 * k])
-                              for k in range(count)})
+                moves = {}      # a linear search finds an event's first transition in the file
+                for k in range(count):
+                    moves.setdefault(self.EV[str(data[pos + 1 + 3 * k])],
+                                     int(data[pos + 2 + 3 * k]) * 256 + int(data[pos + 3 + 3 * k]))
+                table.append(moves)
                 pos += 1 + 3 * count
             self.moves.append(table)
         self.public_first = public_first
@@ -83,12 +86,12 @@ class PublishedStep:
 class World:
     """Side-effecting checks and logging callbacks, bound by name as a published controller does."""
 
-    def __init__(self, sct, names, seed):
+    def __init__(self, sct, names, seed, acting=None):
         self.draw, self.flags, self.calls = random.Random(seed), {}, []
         for name in names:
             index = sct.EV[name]
-            sct.add_callback(index, lambda data, name=name: self.act(name), lambda data, name=name: self.check(name),
-                             {"name": name})
+            act = (lambda data, name=name: self.act(name)) if acting is None or name in acting else None
+            sct.add_callback(index, act, lambda data, name=name: self.check(name), {"name": name})
 
     def check(self, name):
         self.calls.append("check " + name)
@@ -102,8 +105,8 @@ class World:
         self.flags[name] = True                        # an action that a later check reads
 
 
-def run(sct, names, step, steps):
-    world = World(sct, names, seed=11)
+def run(sct, names, step, steps, acting=None):
+    world = World(sct, names, seed=11, acting=acting)
     random.seed(5)
     rows = []
     for _ in range(steps):
@@ -131,6 +134,20 @@ def test_exact_mode_matches_the_published_step(vm, path, public_first):
         assert have[:3] == want[:3], "step %d" % number
         assert have[3] == want[3], "random state after step %d" % number
     assert any(len(row[1]) > 1 for row in got), "the run should fire several events in a step"
+
+
+@pytest.mark.parametrize("public_first", [False, True], ids=["SCT", "SCTPub"])
+@pytest.mark.parametrize("path", CORPUS, ids=lambda p: Path(p).stem)
+def test_exact_mode_with_actions_on_controllable_events_only(vm, path, public_first):
+    """As published controllers mostly are (checks on the uncontrollable events, actions on the
+    controllable ones): the exact step then moves the inputs without looking for actions, and
+    still steps as the published one does."""
+    oracle = PublishedStep(path, public_first)
+    compat = (vm.SCTPub if public_first else vm.SCT)(path)
+    acting = {name for name, index in oracle.EV.items() if oracle.controllable[index]}
+    expected = run(oracle, list(oracle.EV), oracle.run_step, 500, acting)
+    assert run(compat, list(oracle.EV), lambda: compat.run_step() or compat.last_events, 500, acting) == expected
+    assert any(len(row[1]) > 1 for row in expected), "the run should fire several events in a step"
 
 
 class PublishedStyleDrone:
@@ -264,3 +281,108 @@ def test_an_action_that_registers_again_leaves_the_run_unchanged(vm, exact):
         runs.append(rows)
     assert runs[0] == runs[1]
     assert any(len(row[1]) > 0 and len(row[0]) > len(row[1]) for row in runs[0])   # inputs, then a choice
+
+
+def random_supervisor(seed):
+    """A supervisor.yaml the published VM runs, in the variants of issue 24: names without
+    ``EV_`` or with '-', states with a second transition on an event, a current state other than
+    the initial one (reachable from it or not)."""
+    draw = random.Random(seed)
+    n_events, n_sups = draw.randint(2, 9), draw.randint(1, 3)
+    style = seed % 3
+    events = [("e%d" % i, "EV_go-%d" % i, "EV_x%d" % i)[style if style != 2 else i % 3] for i in range(n_events)]
+    controllable = [draw.randint(0, 1) for _ in events]
+    controllable[0], controllable[1] = 0, 1
+    alphabets = [[1 if draw.random() < 0.7 else 0 for _ in events] for _ in range(n_sups)]
+    for alphabet in alphabets:
+        alphabet[draw.randrange(n_events)] = 1
+    data, positions, inits, currents = [], [], [], []
+    for alphabet in alphabets:
+        positions.append(len(data))
+        n_states = draw.randint(1, 5)
+        for _ in range(n_states):
+            moves = [e for e in range(n_events) if alphabet[e] and draw.random() < 0.6]
+            moves += [draw.choice(moves)] if moves and draw.random() < 0.3 else []     # nondeterministic
+            data.append(len(moves))
+            for e in moves:
+                data += [events[e], 0, draw.randrange(n_states)]
+        inits.append(draw.randrange(n_states))
+        currents.append(draw.randrange(n_states))
+    return ("num_events: %d\nnum_supervisors: %d\nevents: [ %s ]\nev_controllable: %s\nsup_events: %s\n"
+            "sup_init_state: %s\nsup_current_state: %s\nsup_data_pos: %s\nsup_data: [ %s ]\n"
+            % (n_events, n_sups, ", ".join(events), controllable, alphabets, inits, currents, positions,
+               ", ".join(map(str, data))))
+
+
+@pytest.mark.parametrize("seed", range(24))
+def test_random_supervisors_in_the_published_variants(vm, tmp_path, seed):
+    """Names as written (no EV_, '-'), the start from sup_current_state, the first of two
+    transitions on one event: SCT and SCTPub step as the oracle does."""
+    path = tmp_path / "supervisor.yaml"
+    path.write_text(random_supervisor(seed))
+    for public_first in (False, True):
+        oracle = PublishedStep(str(path), public_first)
+        compat = (vm.SCTPub if public_first else vm.SCT)(str(path))
+        assert compat.EV == oracle.EV and compat.sup_current_state == oracle.state
+        names = list(oracle.EV)
+        expected = run(oracle, names, oracle.run_step, 200)
+        assert run(compat, names, lambda: compat.run_step() or compat.last_events, 200) == expected
+
+
+def test_registration_as_published(vm, tmp_path):
+    """A check on a controllable event is accepted (and, as the published step polls only
+    uncontrollable events, never called); registering again replaces action and check."""
+    path = tmp_path / "two.yaml"
+    path.write_text("num_events: 2\nnum_supervisors: 1\nevents: [ in, out ]\nev_controllable: [ 0, 1 ]\n"
+                    "sup_events: [ [ 1, 1 ] ]\nsup_init_state: [ 0 ]\nsup_data_pos: [ 0 ]\n"
+                    "sup_data: [ 2, in, 0, 0, out, 0, 0 ]\n")
+    for sct in (vm.SCT(str(path)), PublishedStep(str(path), False)):
+        calls = []
+        sct.add_callback(sct.EV["out"], lambda _d: calls.append("out"), lambda _d: calls.append("check out"), None)
+        sct.add_callback(sct.EV["in"], lambda _d: calls.append("first"), lambda _d: True, None)
+        sct.add_callback(sct.EV["in"], None, lambda _d: calls.append("check in") or True, None)
+        sct.run_step()
+        assert calls == ["check in", "out"], type(sct)
+        sct.add_callback(sct.EV["in"], lambda _d: calls.append("in"), None, None)     # no check: never occurs
+        sct.run_step()
+        assert calls == ["check in", "out", "out"]
+
+
+def _pack(yaml_path, svm_path):
+    from swarmvm import api
+    api.write_image([str(yaml_path)], str(svm_path))
+
+
+def test_a_stale_or_missing_image_is_refused(vm, tmp_path, monkeypatch):
+    """Without the compiler, SCT("x/supervisor.yaml") reads x/supervisor.svm: refused, with the
+    command that fixes it, when missing or packed from other bytes of the YAML file."""
+    source = next(p for p in CORPUS if p.endswith("/uav.yaml"))
+    yaml_path, svm_path = tmp_path / "supervisor.yaml", tmp_path / "supervisor.svm"
+    yaml_path.write_bytes(Path(source).read_bytes())
+    monkeypatch.setitem(__import__("sys").modules, "swarmvm.pipeline", None)     # a robot: no compiler
+    fix = "run swarmvm pack %s -o %s" % (yaml_path, svm_path)
+    with pytest.raises(FileNotFoundError, match="cannot read table image %s for %s: %s" % (svm_path, yaml_path, fix)):
+        vm.SCT(str(yaml_path))
+    monkeypatch.undo()
+    _pack(yaml_path, svm_path)
+    monkeypatch.setitem(__import__("sys").modules, "swarmvm.pipeline", None)
+    assert list(vm.SCT(str(yaml_path)).EV) == PublishedStep(source, False).events
+    yaml_path.write_bytes(Path(source).read_bytes() + b"# edited\n")
+    with pytest.raises(ValueError, match="%s is stale: it was packed from another version of %s: %s"
+                       % (svm_path, yaml_path, fix)):
+        vm.SCT(str(yaml_path))
+
+
+def test_the_packed_image_is_deterministic_and_keeps_the_start(tmp_path):
+    """`swarmvm pack` twice gives the same bytes; the image records sup_current_state."""
+    import swarmvm_format
+    path = tmp_path / "supervisor.yaml"
+    path.write_text(random_supervisor(4))
+    _pack(path, tmp_path / "a.svm")
+    _pack(path, tmp_path / "b.svm")
+    raw = (tmp_path / "a.svm").read_bytes()
+    assert raw == (tmp_path / "b.svm").read_bytes()
+    image = swarmvm_format.Image.parse(raw)
+    import hashlib
+    assert image.source.digest == hashlib.sha256(path.read_bytes()).digest()
+    assert image.source.written == sorted(image.source.written, key=lambda n: n.replace("-", "_").removeprefix("EV_"))
