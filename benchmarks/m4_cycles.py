@@ -15,7 +15,15 @@ the worst step over all of them, and the mean for the default options alone, for
 each built from its own runtime and harness with the same flags (firmware/capbot/m4.flags),
 the current one with the generated CapBot application's features (FEATURES).
 Every trace is also compared with the Python reference, so a figure is never that of a wrong
-run."""
+run.
+
+Not what ``swarmvm footprint --cycles`` measures (swarmvm.footprint_cycles_m4), and so not its
+code: that runs a user's image unchanged, one event script with the image's own options, and
+counts the instructions of each ``svm_step`` by single-stepping it through QEMU's GDB stub
+(about 0.2 s per step). This benchmark runs the conformance harness, built to time itself, over
+every option combination of 200-step scripts (tens of thousands of steps per supervisor, twice),
+which only a program reading its own timer at full speed can do in minutes; the harness also
+checks every trace against the Python reference."""
 
 import argparse
 import json

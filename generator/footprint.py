@@ -21,11 +21,15 @@ import os
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
 
 from .footprint_stack import Stack
+
+if TYPE_CHECKING:
+    from .footprint_cycles import Cycles
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_PY, image_format
 
 FORMAT = image_format()
@@ -67,6 +71,7 @@ class Footprint:
     flash: Split = field(default_factory=Split)
     ram: Split = field(default_factory=Split)
     stack: Stack | None = None          # worst-case stack (footprint_stack), when measured
+    cycles: "Cycles | None" = None      # cycles per step with an event script (footprint_cycles)
 
     @property
     def vm(self):
@@ -79,6 +84,8 @@ class Footprint:
                      ram=asdict(self.ram), vm=self.vm)
         if self.stack is not None:
             image["stack"] = self.stack.as_json()
+        if self.cycles is not None:
+            image["cycles"] = self.cycles.as_json()
         return image
 
 
@@ -101,7 +108,9 @@ COLUMNS = (Column("flash", "flash", ("flash", "total")), Column("flash_core", "V
            Column("ram_tables", "tables", ("ram", "tables")),
            Column("ram_application", "application", ("ram", "application")),
            Column("vm", "VM", ("vm",)), Column("stack", "stack", ("stack", "total")),
-           Column("stack_step", "VM step stack", ("stack", "step")))
+           Column("stack_step", "VM step stack", ("stack", "step")),
+           Column("cycles_mean", "cycles/step", ("cycles", "mean"), "cycles"),
+           Column("cycles", "worst cycles/step", ("cycles", "worst"), "cycles"))
 COLUMN = {column.key: column for column in COLUMNS}
 STACK_COLUMN = {"total": "stack", "step": "stack_step"}    # Stack's figures -> their columns
 
@@ -224,6 +233,19 @@ def _is_image(elf, symbol):
     start = symbol["st_value"] - section["sh_addr"]         # inside the section: _check_symbol
     header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
     return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
+
+
+def table_image(path) -> bytes:
+    """The bytes of the table image linked into an ELF (the first symbol holding one)."""
+    with open(path, "rb") as handle:
+        elf = ELFFile(handle)
+        for symbol, _ in _symbols(elf):
+            _check_symbol(path, elf, symbol)
+            if _is_image(elf, symbol):
+                section = elf.get_section(symbol["st_shndx"])
+                start = symbol["st_value"] - section["sh_addr"]
+                return section.data()[start:start + symbol["st_size"]]
+    raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
 
 
 def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):

@@ -10,11 +10,11 @@ from dataclasses import asdict, dataclass
 
 from .errors import InputError
 from .escape import html, markdown
-from .footprint import COLUMNS, SEED_KPI_SOURCE, Footprint, Limits, Row, row_of, source_sizes
+from .footprint import COLUMNS, SEED_KPI_SOURCE, Column, Footprint, Limits, Row, row_of, source_sizes
 from .footprint_budget import Budgets, Check, checks
 from .footprint_delta import REPORT_FORMAT, REPORT_VERSION, Baseline, RowDelta, compare, growth, summary
 
-INTRODUCTION = ("Bytes in the linked images (docs/footprint.md says what is counted where). "
+INTRODUCTION = ("Bytes in the linked images. "
                 "Flash = code + constants + .data initialisers; RAM = .data + .bss (static, no stack); "
                 "stack = worst case of the whole program, VM step stack = of svm_step and what it calls.")
 
@@ -58,10 +58,15 @@ def build(footprints: list[Footprint], limits: Limits, budgets: Budgets, baselin
                            fail_on_growth, grown)
 
 
-def _cells(row: Row, delta: RowDelta | None = None) -> list[str]:
+def _shown(rows: list[Row]) -> tuple[Column, ...]:
+    """The columns some row has a figure, or an unknown one, for: the cycles only when measured."""
+    return tuple(c for c in COLUMNS if any(c.key in r.values or c.key in r.unknown for r in rows))
+
+
+def _cells(row: Row, columns: tuple[Column, ...], delta: RowDelta | None = None) -> list[str]:
     """A row's figures, each with its change when it changed."""
     cells = []
-    for column in COLUMNS:
+    for column in columns:
         value = row.values.get(column.key)
         cell = ("unknown" if column.key in row.unknown else "") if value is None else str(value)
         change = delta.changes.get(column.key) if delta is not None else None
@@ -71,11 +76,11 @@ def _cells(row: Row, delta: RowDelta | None = None) -> list[str]:
     return cells
 
 
-def _table(rows: list[tuple[list[str], list[str]]], status: bool) -> list[str]:
+def _table(rows: list[tuple[list[str], list[str]]], columns: tuple[Column, ...], status: bool) -> list[str]:
     """A Markdown table of (name cells, figure cells); names escaped here."""
     head = ["target", "supervisor"] + (["change"] if status else [])
-    lines = ["| %s | %s |" % (" | ".join(head), " | ".join(c.label for c in COLUMNS)),
-             "|%s%s" % ("---|" * len(head), "---:|" * len(COLUMNS))]
+    lines = ["| %s | %s |" % (" | ".join(head), " | ".join(c.label for c in columns)),
+             "|%s%s" % ("---|" * len(head), "---:|" * len(columns))]
     for names, figures in rows:
         lines.append("| %s |" % " | ".join([markdown(n) for n in names] + figures))
     return lines
@@ -85,17 +90,38 @@ def _rows_section(report: FootprintReport) -> list[str]:
     """Today's table; against a baseline, a status column and each change, changed rows first
     and the unchanged ones folded in a <details> block."""
     if report.baseline is None:
-        return _table([([r.target, r.supervisor], _cells(r)) for r in report.rows], status=False)
+        columns = _shown(report.rows)
+        return _table([([r.target, r.supervisor], _cells(r, columns)) for r in report.rows], columns, status=False)
+    columns = _shown([d.row for d in report.deltas])
     shown = [d for d in report.deltas if d.status != "unchanged"]
     folded = [d for d in report.deltas if d.status == "unchanged"]
     lines = [markdown(summary(report.deltas, report.baseline)), ""]
     if shown:
-        lines += _table([([d.row.target, d.row.supervisor, d.status], _cells(d.row, d)) for d in shown], status=True)
+        lines += _table([([d.row.target, d.row.supervisor, d.status], _cells(d.row, columns, d)) for d in shown],
+                        columns, status=True)
     if folded:
         lines += ["", "<details><summary>%d unchanged row%s</summary>" % (len(folded), "" if len(folded) == 1 else "s"),
                   ""]
-        lines += _table([([d.row.target, d.row.supervisor, d.status], _cells(d.row)) for d in folded], status=True)
+        lines += _table([([d.row.target, d.row.supervisor, d.status], _cells(d.row, columns)) for d in folded],
+                        columns, status=True)
         lines += ["", "</details>"]
+    return lines
+
+
+def _cycles_section(report: FootprintReport) -> list[str]:
+    """Per row run with an event script: its steps and the worst one, with the inputs it had."""
+    measured = [f for f in report.footprints if f.cycles is not None]
+    if not measured:
+        return []
+    lines = ["", "Cycles per step (the image run with the event script: Kilobot CPU cycles in simavr, CapBot "
+             "instructions in QEMU):", ""]
+    for footprint in measured:
+        cycles = footprint.cycles
+        assert cycles is not None
+        lines.append("- " + markdown("%s/%s: %s, %d steps: mean %d, worst %d at step %d (inputs: %s)"
+                                     % (footprint.target, footprint.supervisor, cycles.script, len(cycles.per_step),
+                                        cycles.mean, cycles.worst, cycles.worst_step,
+                                        " ".join(cycles.worst_inputs) or "none")))
     return lines
 
 
@@ -111,9 +137,10 @@ def markdown_report(report: FootprintReport, runtime_sizes: bool = False) -> str
         lines += ["", markdown("Budgets: %d checks from %s." % (budgeted, report.budgets.file))]
     if report.fail_on_growth is not None:
         lines += ["", "Growth allowed: %g %% per column." % report.fail_on_growth]
+    lines += _cycles_section(report)
     unknown = ["%s: %s: unknown: %s" % (row.name, key, why) for row in report.rows for key, why in sorted(row.unknown.items())]
     if unknown:
-        lines += ["", "Stack bounds not known (docs/footprint.md, \"Stack\"):", ""] + ["- " + markdown(u) for u in unknown]
+        lines += ["", "Stack bounds not known:", ""] + ["- " + markdown(u) for u in unknown]
     failures = report.failures()
     if failures:
         lines += ["", "**Failed:**", ""] + ["- " + markdown(failure) for failure in failures]

@@ -36,6 +36,7 @@ from .errors import InputError
 
 OBJDUMP = {"kilobot": "avr-objdump", "capbot": "arm-none-eabi-objdump"}
 STEP_ROOT = "svm_step"
+STEP_SOURCE = "swarmvm.c"                   # the VM core's source: svm_step and its static helpers
 MAIN_ROOT = "main"
 AVR_VECTOR = re.compile(r"^__vector_\d+$")
 # libgcc's switch-table helpers: reached by a jump from a function's switch, their indirect jump
@@ -46,6 +47,8 @@ AVR_TARGET = re.compile(r";\s*0x([0-9a-f]+)\b")
 ARM_TARGET = re.compile(r"^([0-9a-f]+) <")
 AVR_SP = re.compile(r"^0x3[de]\b")
 ARM_REGISTERS = re.compile(r"\{([^}]*)\}")
+ARM_SP_IMMEDIATE = re.compile(r"^sp,\s*(sp,\s*)?#\d+")        # sp, #N and sp, sp, #N
+ARM_POP_PC = re.compile(r"^pc,\s*\[sp\],\s*#4\b")
 
 
 class StackUnknown(Exception):
@@ -188,13 +191,17 @@ def _read_arm(function: Function, address: int, mnemonic: str, operands: str, ne
     elif base == "vpush" and registers:
         names = _register_list(registers.group(1))
         function.pushes += sum(8 if name.startswith("d") else 4 for name in names)
-    elif base in ("sub", "subw") and re.match(r"^sp,\s*(sp,\s*)?#\d+", operands):
+    elif base in ("sub", "subw") and ARM_SP_IMMEDIATE.match(operands):
         function.pushes += int(operands.rpartition("#")[2].split()[0])
     elif base in ("blx", "bx") and not ARM_TARGET.match(operands):
         if operands.split()[0] != "lr":
             function.indirect = True
+    elif base == "ldr" and ARM_POP_PC.match(operands):
+        pass                                    # `ldr pc, [sp], #4`: a return (pop {pc})
     elif (re.match(r"^(mov|add|ldr|pop|ldm)", base) and re.match(r"^pc\b", operands)):
         function.indirect = True
+    elif base in ("add", "addw") and ARM_SP_IMMEDIATE.match(operands):
+        pass                                    # `add sp, #N`: the frame given back
     elif re.match(r"^(mov|add|sub|ldr)", base) and re.match(r"^sp,", operands):
         function.moves_sp = True
     elif re.match(r"^(bl|blx|b|b[a-z]{2}|cbn?z)$", base):
@@ -272,16 +279,27 @@ class CallGraph:
                                % function.name)
         return function.pushes + (2 if self.target == "kilobot" else 0)
 
+    def declared(self, function: Function) -> tuple[str, ...] | None:
+        """What an indirect call in ``function`` may reach: its own declaration, or, for a
+        static function of the VM core's step (``apply``, ``step_m``: svm_step's code that the
+        compiler kept out of line, as arm-none-eabi-gcc -Os does), ``svm_step``'s."""
+        if function.name in self.indirect:
+            return self.indirect[function.name]
+        if function.file is not None and Path(function.file).name == STEP_SOURCE:
+            return self.indirect.get(STEP_ROOT)
+        return None
+
     def callees(self, function: Function) -> list[Function]:
         found = []
         if function.indirect and function.name not in SWITCH_TABLE_HELPERS:
-            if function.name not in self.indirect:
+            declared = self.declared(function)
+            if declared is None:
                 raise StackUnknown("indirect call in %s" % function.name)
-            for name in self.indirect[function.name]:
+            for name in declared:
                 found += self.named(name)
             if not found:
                 raise StackUnknown("indirect call in %s: none of its declared targets (%s) is in the image"
-                                   % (function.name, ", ".join(self.indirect[function.name])))
+                                   % (function.name, ", ".join(declared)))
         starts = sorted(self.functions)
         for address in sorted(function.calls):
             callee = _containing(self.functions, starts, address)

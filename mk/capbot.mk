@@ -3,6 +3,7 @@
 #   make emulate    runs that image in QEMU and shows its trace (mk/emulate.mk)
 #   make bench      also runs benchmarks/m4_cycles.py (instructions per VM step in QEMU, current
 #                   VM against the baseline, in one run)
+#   make ... CAPBOT_CFLAGS=-DSVM_STACK_PAINT   images that print main's deepest stack at exit
 # The control-logic flash page (firmware/capbot/swarmvm_logic_page.h, 4 KB at CAPBOT_LOGIC_PAGE):
 #   $(BUILD)/capbot/<name>-logic.hex   a model's image at the page address, Intel HEX, for
 #                                      nrfjprog --program / west flash --hex-file on the robot
@@ -25,6 +26,14 @@ CAPBOT_LOGIC_PAGE := 0x000F3000
 CAPBOT_FW_DEPS := $(CAPBOT_FW_SOURCES) $(addprefix $(CAPBOT_FW)/,capbot.h m4.flags mps2_an386.ld)
 CAPBOT_GEN_DEPS := $(wildcard templates/capbot/*.j2 templates/c/*.j2 runtime_c/*.[ch] generator/*.py )
 CAPBOT_CORPUS := $(sort $(basename $(notdir $(wildcard tests/corpus/*/*.yaml))))
+# Extra compiler flags of the <name>.elf images, e.g. -DSVM_STACK_PAINT (startup.c: main's deepest
+# stack measured by painting, printed on stderr at exit).
+CAPBOT_CFLAGS ?=
+# What the indirect calls of these images reach, for `swarmvm footprint` (docs/footprint.md,
+# "Stack"): the dispatch app_qemu.c gives the VM, the character sinks it gives the trace
+# printer, and newlib's stdio writing a stream (its FILE's write and seek functions).
+CAPBOT_INDIRECT := --indirect svm_step=traced_dispatch --indirect svm_put_decimal=to_stdout,to_stderr \
+  --indirect __sfvwrite_r=__swrite --indirect __sflush_r=__swrite,__sseek
 
 firmware: capbot-firmware
 bench: bench-m4
@@ -54,7 +63,7 @@ $(BUILD)/capbot/gen/$1/CMakeLists.txt: $2 $(CAPBOT_GEN_DEPS)
 	$(SWARMVM) gen $2 --target capbot -o $(BUILD)/capbot/gen/$1 --name $1 >/dev/null
 
 $(BUILD)/capbot/$1.elf: $(BUILD)/capbot/gen/$1/CMakeLists.txt $(CAPBOT_FW_DEPS)
-	$(CAPBOT_CC) @$(CAPBOT_FW)/m4.flags \
+	$(CAPBOT_CC) @$(CAPBOT_FW)/m4.flags $(CAPBOT_CFLAGS) \
 	  $$$$(grep -o -- '-DSVM_\(MAX\|WITH\)_[A-Z_]*=[0-9]*' $$<) -DSVM_APP=$1 '-DSVM_APP_HEADER="$1_tables.h"' \
 	  -I$(BUILD)/capbot/gen/$1/src -I$(CAPBOT_FW) -T $(CAPBOT_FW)/mps2_an386.ld $(CAPBOT_FW_SOURCES) \
 	  $$(filter-out %/main.c,$$(wildcard $(BUILD)/capbot/gen/$1/src/*.c)) -o $$@

@@ -25,20 +25,15 @@ import tempfile
 from pathlib import Path
 from typing import Callable
 
+# No kilolib could be found or built (the message says why and how to get one): the package's
+# error for a missing Kilobot tool, which the board raises too, and its cache folder.
+from swarmvm.kilobot_board import KilobotToolMissing as KilolibMissing, cache_root
+
 ROOT = Path(__file__).resolve().parent.parent.parent
 DEFAULT_SOURCE = ROOT.parent / "shared" / "vendor" / "kilolib-b95fdaf.tar.gz"
 LIBRARY = Path("build") / "kilolib.a"
 HOW_TO_GET = ("set KILOLIB to a built kilolib checkout (https://github.com/acornejo/kilolib, `make` in it) "
               "or KILOLIB_SRC to its source archive, with avr-gcc installed (scripts/setup.sh)")
-
-
-class KilolibMissing(RuntimeError):
-    """No kilolib could be found or built; the message says why and how to get one."""
-
-
-def cache_root() -> Path:
-    """Where built libraries are kept: the user's cache folder, never the checkout."""
-    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "swarmvm"
 
 
 def is_kilolib(folder: Path) -> bool:

@@ -2,7 +2,7 @@
 
 import pytest
 
-from footprint_images import build_deeper, build_images, build_larger
+from footprint_images import build_deeper, build_images, build_larger, build_slower
 
 
 @pytest.fixture(scope="session")
@@ -22,3 +22,9 @@ def larger(build, tmp_path_factory):
 def deeper(build, tmp_path_factory):
     """The Kilobot energy_worker with a big local array in a check (footprint_images.DEEPER)."""
     return build_deeper(build, tmp_path_factory.mktemp("deeper") / "energy_worker")
+
+
+@pytest.fixture(scope="session")
+def slower(build, tmp_path_factory):
+    """The Kilobot energy_worker with a busy-waiting check (footprint_images.SLOWER)."""
+    return build_slower(build, tmp_path_factory.mktemp("slower") / "energy_worker")

@@ -1,7 +1,8 @@
 """The real images the footprint tests measure, and how the tests run the command on them:
 the CapBot and Kilobot applications of two corpus supervisors (mk/capbot.mk, mk/kilobot.mk),
 a Kilobot energy_worker whose controller grew (a table in flash, a buffer in RAM), for
-budgets and deltas to catch, and one whose callback needs a deeper stack. conftest.py builds them once per session."""
+budgets and deltas to catch, one whose callback needs a deeper stack and one whose callback
+busy-waits (a slower step). conftest.py builds them once per session."""
 
 import shutil
 import subprocess
@@ -53,9 +54,28 @@ KILOBOT_INDIRECT = ("svm_step=svm_kilobot_app_dispatch,dispatch", "kilo_start=se
                     "__vector_23=on_message,message_rx_dummy")
 
 
+SLOWER_LOOPS = 50
+SLOWER = """
+    volatile unsigned char spin;           /* tests/footprint: a callback that busy-waits */
+    for (spin = 0; spin < %d; spin++) {
+    }
+    return 0;
+""" % SLOWER_LOOPS
+
+
 def build_deeper(root: Path, folder: Path) -> Path:
     """The Kilobot energy_worker.elf of `build_images(root)`, rebuilt in ``folder`` with the
     check of atWork holding a DEEPER_ARRAY-byte local array: a VM step that needs more stack."""
+    return _with_check(root, folder, DEEPER)
+
+
+def build_slower(root: Path, folder: Path) -> Path:
+    """The same, with the check of atWork busy-waiting SLOWER_LOOPS rounds: a slower VM step."""
+    return _with_check(root, folder, SLOWER)
+
+
+def _with_check(root: Path, folder: Path, body_text: str) -> Path:
+    """The example rebuilt in ``folder`` with ``body_text`` as the body of its atWork check."""
     shutil.copytree(root / "kilobot" / "gen" / "energy_worker", folder)
     for stale in ["energy_worker.elf", *(p.name for p in folder.glob("*.su"))]:
         (folder / stale).unlink(missing_ok=True)
@@ -63,7 +83,7 @@ def build_deeper(root: Path, folder: Path) -> Path:
     text = controller.read_text()
     check = "unsigned char energy_worker_check_atWork(void)\n{\n"
     body = text.index(check) + len(check)
-    controller.write_text(text[:body] + DEEPER + text[text.index("}\n", body):])
+    controller.write_text(text[:body] + body_text + text[text.index("}\n", body):])
     return _make(folder)
 
 

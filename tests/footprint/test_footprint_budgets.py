@@ -80,7 +80,7 @@ def test_each_row_over_budget_is_one_line_naming_every_column(build, larger, tmp
 @pytest.mark.parametrize("name, text, key, message", [
     ("budget.toml", "[kilobot\nflash = 1\n", "", "not a TOML file (Expected ']'"),
     ("budget.toml", "[z80]\nflash = 1\n", "z80", "unknown target (one of capbot, kilobot)"),
-    ("budget.toml", "[kilobot]\nflsh = 1\n", "kilobot.flsh", "unknown column (one of flash, flash_application,"),
+    ("budget.toml", "[kilobot]\nflsh = 1\n", "kilobot.flsh", "unknown column (one of cycles, cycles_mean, flash,"),
     ("budget.toml", "[kilobot]\nflash = -1\n", "kilobot.flash", "must be a whole number (B), at least 0, got -1"),
     ("budget.toml", "[kilobot]\nram = \"2 kB\"\n", "kilobot.ram", "must be a whole number (B), at least 0, got '2 kB'"),
     ("budget.toml", "[kilobot]\nram = true\n", "kilobot.ram", "got True"),

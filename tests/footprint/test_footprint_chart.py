@@ -75,3 +75,20 @@ def test_a_chart_onto_a_folder_is_one_line_before_any_output(build, tmp_path):
     result = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--chart", folder)
     assert result.returncode == 2 and result.stdout == "" and result.stderr == (
         "swarmvm: error: %s: --chart: is a folder, not a file that can be written\n" % folder)
+
+
+def test_json_and_chart_are_one_transaction(build, tmp_path):
+    """Both written, or neither: a chart that cannot be written leaves no JSON behind (before,
+    the JSON was written first and stayed), and an old JSON keeps its bytes."""
+    folder = tmp_path / "charts" / "chart.svg"
+    folder.mkdir(parents=True)
+    report = tmp_path / "report.json"
+    result = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--json", report, "--chart", folder)
+    assert result.returncode == 2 and result.stdout == "" and result.stderr == (
+        "swarmvm: error: %s: --json, --chart: is a folder, not a file that can be written\n" % folder)
+    assert not report.exists()
+    report.write_text("old\n")
+    assert swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--json", report, "--chart", folder).returncode == 2
+    assert report.read_text() == "old\n"
+    both = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--json", report, "--chart", tmp_path / "c.svg")
+    assert both.returncode == 0 and report.read_text().startswith("{") and (tmp_path / "c.svg").is_file()

@@ -3,12 +3,18 @@ bound from the .su files the generated Kilobot Makefile writes and the call grap
 image's disassembly; an indirect call nobody declared, or no .su data, is reported unknown,
 never guessed; a callback made deeper is caught by a stack budget; static RAM plus stack is
 checked against the Kilobot's 2,048 B; and the deepest stack measured in simavr by stack
-painting stays within the static bound."""
+painting stays within the static bound. The same for the CapBot (Cortex-M4) image of mk/capbot.mk,
+its indirect calls declared as mk/capbot.mk does, measured in QEMU (startup.c's stack painting)."""
 
 import json
+import re
 import shutil
+import subprocess
 import sys
 
+import pytest
+
+import capbot_images
 from checkout import FIRMWARE
 from footprint_images import DEEPER_ARRAY, KILOBOT_INDIRECT, swarmvm_footprint
 
@@ -97,3 +103,56 @@ def test_the_stack_measured_in_simavr_is_within_the_static_bound(build, tmp_path
     run = board.run(example(build), ticks=400, paint_stack=True)
     assert run.end[2] == "ticks"
     assert 0 < run.stack <= stack["total"]
+
+
+@pytest.fixture(scope="module")
+def capbot_deeper(build, tmp_path_factory):
+    return capbot_images.rebuilt(build, tmp_path_factory.mktemp("capbot-deeper"), capbot_images.DEEPER)
+
+
+@pytest.fixture(scope="module")
+def capbot_painted(build, tmp_path_factory):
+    return capbot_images.rebuilt(build, tmp_path_factory.mktemp("capbot-painted"), cflags="-DSVM_STACK_PAINT")
+
+
+def test_the_capbot_example_has_a_known_bound_once_its_indirect_calls_are_declared(build, tmp_path):
+    result, stack = stack_of(capbot_images.example(build), tmp_path, *capbot_images.capbot_indirect())
+    assert result.returncode == 0, result.stderr
+    assert set(stack) == {"step", "total"}
+    assert 0 < stack["step"] < stack["total"] < 4096
+    undeclared = stack_of(capbot_images.example(build), tmp_path)[1]
+    assert set(undeclared) == {"unknown"}
+    assert all(why.startswith("indirect call in ") for why in undeclared["unknown"].values()), undeclared
+
+
+def test_the_capbot_stack_measured_in_qemu_is_within_the_static_bound(capbot_painted, tmp_path):
+    _, stack = stack_of(capbot_painted, tmp_path, *capbot_images.capbot_indirect())
+    run = subprocess.run(["timeout", "60", "qemu-system-arm", "-M", "mps2-an386", "-nographic", "-monitor", "none",
+                          "-semihosting-config", "enable=on,target=native", "-kernel", str(capbot_painted)],
+                         stdin=subprocess.DEVNULL, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    used = int(re.search(r"^stack: main used (\d+) B$", run.stderr, re.M).group(1))
+    assert stack["total"] // 2 < used <= stack["total"]
+
+
+def test_a_deeper_capbot_callback_is_caught_by_a_stack_budget(build, capbot_deeper, tmp_path):
+    indirect = capbot_images.capbot_indirect()
+    _, before = stack_of(capbot_images.example(build), tmp_path, *indirect)
+    _, after = stack_of(capbot_deeper, tmp_path, *indirect)
+    # The array's frame is now on the deepest path (it replaced a shallower one: growth under 300 B).
+    assert after["step"] > max(before["step"], capbot_images.DEEPER_ARRAY)
+    assert after["total"] > max(before["total"], capbot_images.DEEPER_ARRAY)
+    (tmp_path / "budget.toml").write_text("[capbot]\nstack = %d\n" % (before["total"] + 16))
+    passing = swarmvm_footprint(capbot_images.example(build), "--budget", "budget.toml", *indirect, cwd=tmp_path)
+    assert passing.returncode == 0, passing.stderr
+    failing = swarmvm_footprint(capbot_deeper, "--budget", "budget.toml", *indirect, cwd=tmp_path)
+    assert failing.returncode == 1
+    assert failing.stderr == ("swarmvm: footprint: capbot/energy_worker: stack %d B over its budget of %d B "
+                              "(by %d B)\n" % (after["total"], before["total"] + 16,
+                                              after["total"] - before["total"] - 16))
+
+
+def test_the_documented_capbot_declarations_are_the_makefiles():
+    """docs/footprint.md shows the command with mk/capbot.mk's CAPBOT_INDIRECT, which the tests above run."""
+    docs = re.sub(r" *\\\n\s*", " ", (FIRMWARE.parent / "docs" / "footprint.md").read_text())
+    assert "swarmvm footprint build/capbot/energy_worker.elf %s\n" % " ".join(capbot_images.capbot_indirect()) in docs

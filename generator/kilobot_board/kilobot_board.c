@@ -20,7 +20,7 @@
  * The distance (ADC) of a received message is whatever simavr's ADC reads: not modelled.
  *
  * usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] [-e EEPROM_IN]
- *                      [-E EEPROM_OUT] [-r ADDR] [-s ADDR] IMAGE.elf
+ *                      [-E EEPROM_OUT] [-r ADDR] [-s ADDR] [-p STEP_PC [-k CHECK_PC]... [-x SCRIPT]] IMAGE.elf
  *   -t  SRAM address of kilo_ticks (avr-nm): schedule times and -n are in kilolib ticks
  *   -n  stop once kilo_ticks reaches this;  -c  stop after this many cycles (default 4e9)
  *   -m  schedule file, one message a line: "TICK TYPE DATA" (TYPE hex, DATA 18 hex digits),
@@ -30,9 +30,19 @@
  *   -s  stack painting: SRAM from this address (the end of .bss) to RAMEND is filled with 0xA5
  *       before the run; at the end "#stack LOWEST" is the lowest address no longer holding it
  *       (RAMEND + 1 when none: the stack's high-water mark is RAMEND + 1 - LOWEST bytes)
+ *   -p  cycles per step: the flash byte address of svm_step; each call prints "#step N CYCLES",
+ *       the cycles from its first instruction to its return (interrupts taken meanwhile included)
+ *   -k  with -x: the address of a function svm_step calls through its dispatch pointer
+ *       (repeatable): while a step runs, a check (op SVM_OP_CHECK in r20) entered there returns
+ *       the script's bit for its event (r22) instead of the program's answer, set in r24 when it
+ *       returns (the outermost of nested ones)
+ *   -x  event script: one line per step, that step's event mask as hex bytes (event e = bit
+ *       e % 8 of byte e / 8); the run stops ("steps") once the step after the last line began,
+ *       so the last line's step is measured whole
  * Output (stdout), in order of time: the image's USART0 lines as they are; "#rx TICK TYPE DATA"
  * once a scheduled message was sent; "#tx TICK TYPE DATA ok|badcrc" for each message the robot
- * sent; "#collision TICK"; "#led TICK RGB" (set_color's value) on each change; last "#end TICK CYCLES done|crashed|ticks|cycles".
+ * sent; "#collision TICK"; "#led TICK RGB" (set_color's value) on each change; "#step N CYCLES"
+ * (-p); last "#end TICK CYCLES done|crashed|ticks|cycles|steps".
  */
 #include <stdarg.h>
 #include <stdint.h>
@@ -76,6 +86,22 @@ static long ticks_at = -1, read_at = -1, paint_from = -1;
 static uint32_t stop_tick;
 static int has_stop_tick;
 static avr_cycle_count_t stop_cycle = 4000000000ull;
+
+/* -p / -k / -x: cycles per step, checks answered from an event script. */
+#define MAX_CHECK_PCS 8u
+#define MAX_MASK_BYTES 32u
+#define MAX_SCRIPT_STEPS 100000u
+#define OP_CHECK 0u                     /* swarmvm.h: SVM_OP_CHECK */
+#define NO_FRAME 0x10000L               /* no call being watched */
+static long step_pc = -1;
+static long check_pcs[MAX_CHECK_PCS];
+static unsigned num_check_pcs;
+static uint8_t (*script)[MAX_MASK_BYTES];
+static unsigned script_steps, steps_begun;
+static int has_script;
+static long step_sp = NO_FRAME, check_sp = NO_FRAME;
+static uint8_t check_event;
+static avr_cycle_count_t step_start;
 static const char *stop_reason;
 
 static scheduled_t schedule[MAX_SCHEDULE];
@@ -369,6 +395,85 @@ static void read_schedule(const char *path)
     fclose(f);
 }
 
+/* -x: one line per step of hex mask bytes ('#' lines and blank lines skipped). */
+static void read_script(const char *path)
+{
+    char text[2u * MAX_MASK_BYTES + 8u];
+    FILE *f = fopen(path, "r");
+    has_script = 1;
+    if (f == NULL) {
+        perror(path);
+        exit(2);
+    }
+    script = calloc(MAX_SCRIPT_STEPS, sizeof *script);
+    if (script == NULL) {
+        exit(2);
+    }
+    while (fgets(text, sizeof text, f) != NULL) {
+        size_t length = strcspn(text, "\n");
+        if (length == 0u || text[0] == '#') {
+            continue;
+        }
+        if (script_steps == MAX_SCRIPT_STEPS || length % 2u != 0u || length > 2u * MAX_MASK_BYTES ||
+            hex_bytes(text, script[script_steps], (unsigned)(length / 2u)) != 0) {
+            fprintf(stderr, "%s: bad line: %s", path, text);
+            exit(2);
+        }
+        script_steps++;
+    }
+    fclose(f);
+}
+
+static long stack_pointer(void)
+{
+    return (long)avr->data[R_SPL] | (long)avr->data[R_SPH] << 8;
+}
+
+static int is_check_pc(long pc)
+{
+    unsigned i;
+    for (i = 0; i < num_check_pcs; i++) {
+        if (check_pcs[i] == pc) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Before each instruction: a call of svm_step begins (its cycles are counted from here), a
+ * watched dispatch is entered for a check, or one of them has returned (the stack pointer is
+ * back above the return address its call pushed: 2 bytes on the ATmega328P). */
+static void watch_step(void)
+{
+    long pc = (long)avr->pc, sp = stack_pointer();
+    if (step_sp == NO_FRAME) {
+        if (pc == step_pc) {
+            if (has_script && steps_begun == script_steps) {
+                stop_reason = "steps";
+                return;
+            }
+            step_sp = sp;
+            step_start = avr->cycle;
+            steps_begun++;
+        }
+        return;
+    }
+    if (check_sp == NO_FRAME) {
+        if (has_script && is_check_pc(pc) && avr->data[20] == OP_CHECK) {
+            check_sp = sp;
+            check_event = avr->data[22];
+        }
+    } else if (sp >= check_sp + 2) {
+        const uint8_t *row = script[steps_begun - 1u];
+        avr->data[24] = (uint8_t)((row[check_event / 8u] >> (check_event % 8u)) & 1u);
+        check_sp = NO_FRAME;
+    }
+    if (sp >= step_sp + 2) {
+        printf("#step %u %llu\n", steps_begun, (unsigned long long)(avr->cycle - step_start));
+        step_sp = NO_FRAME;
+    }
+}
+
 static void eeprom_io(const char *path, int save)
 {
     uint8_t bytes[EEPROM_BYTES];
@@ -406,7 +511,7 @@ int main(int argc, char **argv)
     const char *schedule_path = NULL, *eeprom_in = NULL, *eeprom_out = NULL;
     uint32_t flags = 0;
     int option, state = cpu_Running;
-    while ((option = getopt(argc, argv, "t:n:c:m:e:E:r:s:")) != -1) {
+    while ((option = getopt(argc, argv, "t:n:c:m:e:E:r:s:p:k:x:")) != -1) {
         switch (option) {
         case 't': ticks_at = strtol(optarg, NULL, 0); break;
         case 'n': stop_tick = (uint32_t)strtoul(optarg, NULL, 0); has_stop_tick = 1; break;
@@ -416,12 +521,21 @@ int main(int argc, char **argv)
         case 'E': eeprom_out = optarg; break;
         case 'r': read_at = strtol(optarg, NULL, 0); break;
         case 's': paint_from = strtol(optarg, NULL, 0); break;
+        case 'p': step_pc = strtol(optarg, NULL, 0); break;
+        case 'k':
+            if (num_check_pcs == MAX_CHECK_PCS) {
+                return 2;
+            }
+            check_pcs[num_check_pcs++] = strtol(optarg, NULL, 0);
+            break;
+        case 'x': read_script(optarg); break;
         default: return 2;
         }
     }
-    if (optind != argc - 1 || (has_stop_tick && ticks_at < 0)) {
+    if (optind != argc - 1 || (has_stop_tick && ticks_at < 0) || ((has_script || num_check_pcs) && step_pc < 0)) {
         fprintf(stderr, "usage: kilobot_board [-t TICKS_ADDR] [-n TICKS] [-c CYCLES] [-m SCHEDULE] "
-                        "[-e EEPROM_IN] [-E EEPROM_OUT] [-r ADDR] [-s ADDR] IMAGE.elf\n");
+                        "[-e EEPROM_IN] [-E EEPROM_OUT] [-r ADDR] [-s ADDR] [-p STEP_PC [-k CHECK_PC]... "
+                        "[-x SCRIPT]] IMAGE.elf\n");
         return 2;
     }
     avr_global_logger_set(log_errors);
@@ -461,6 +575,12 @@ int main(int argc, char **argv)
     avr_raise_irq(ain0, 0);
     avr_cycle_timer_register(avr, POLL_CYCLES, poll, NULL);
     while (stop_reason == NULL && state != cpu_Done && state != cpu_Crashed) {
+        if (step_pc >= 0) {
+            watch_step();
+            if (stop_reason != NULL) {
+                break;
+            }
+        }
         state = avr_run(avr);
     }
     if (line_length != 0) {
