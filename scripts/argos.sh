@@ -14,6 +14,10 @@
 # test) are serialised by a lock, and the install is renamed into place only when complete, so
 # a half-built cache is never taken for a built one.
 #
+# A build takes about 10 minutes on two cores: stderr says what it does at each stage (unpack,
+# configure, compile, install) and the compile's progress (make's per cent, every 5 points);
+# the whole build output goes to a log in the cache, whose path the first line names.
+#
 # Exit status: 0 found or built; 3 no ARGoS and no source archive (callers may skip); 1 other
 # errors (a bad ARGOS_PREFIX, a failed build).
 set -euo pipefail
@@ -61,18 +65,29 @@ if is_prefix "$prefix"; then exec 9>&-; found; fi   # built by a concurrent call
 work="$(mktemp -d "$cache/.$name.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 log="$cache/$name.build.log"
-echo "argos.sh: building ARGoS from $src into $prefix (a few minutes; log: $log)" >&2
+exec 8>&2   # the caller's stderr: the stages and the progress go there, the build's output to $log
+say() { echo "argos.sh: $*" >&8; }
+# make's output on stdin, copied to $log; its "[ NN%]" lines reported every 5 points.
+progress() {
+  awk -v out="$log" '{ print >> out; fflush(out) }
+    match($0, /^\[ *[0-9]+%\]/) { p = substr($0, 2, RLENGTH - 3) + 0
+      if (p >= shown + 5 || (p == 100 && shown < 100)) { shown = p; printf "argos.sh: compiling ARGoS: %d%%\n", p; fflush() } }'
+}
+say "building ARGoS from $src into $prefix, once (about 10 minutes on two cores); full output: $log"
+: >"$log"
 {
-  mkdir "$work/src" "$work/build"
-  tar -xJf "$src" -C "$work/src" --strip-components=1
-  cd "$work/build"
-  cmake -DCMAKE_BUILD_TYPE=Release -DARGOS_BUILD_FOR=simulator -DARGOS_DOCUMENTATION=OFF \
-        -DARGOS_FORCE_NO_QTOPENGL=ON -DARGOS_INSTALL_LDSOCONF=OFF \
-        -DCMAKE_INSTALL_PREFIX="$prefix" "$work/src/src"
-  make -j"$(nproc)"
-  make install DESTDIR="$work/dest"
-} >"$log" 2>&1 || { echo "argos.sh: ARGoS build failed; see $log" >&2; exit 1; }
+  say "unpacking the source" && mkdir "$work/src" "$work/build" \
+    && tar -xJf "$src" -C "$work/src" --strip-components=1 && cd "$work/build" \
+    && say "configuring (cmake)" \
+    && cmake -DCMAKE_BUILD_TYPE=Release -DARGOS_BUILD_FOR=simulator -DARGOS_DOCUMENTATION=OFF \
+             -DARGOS_FORCE_NO_QTOPENGL=ON -DARGOS_INSTALL_LDSOCONF=OFF \
+             -DCMAKE_INSTALL_PREFIX="$prefix" "$work/src/src" \
+    && say "compiling (make -j$(nproc))" \
+    && { make -j"$(nproc)" 2>&1 | progress >&8; } \
+    && say "installing" && make install DESTDIR="$work/dest"
+} >>"$log" 2>&1 || { echo "argos.sh: ARGoS build failed; see $log" >&2; exit 1; }
 mv "$work/dest$prefix" "$prefix"
+say "built; installed in $prefix"
 rm -rf "$work"; trap - EXIT
 exec 9>&-
 found

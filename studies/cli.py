@@ -216,17 +216,13 @@ def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate
     rates = energy.Rates(capacity=capacity, charge=charge_rate, move=move_rate, work=work_rate, core=core_rate,
                          commute_m=commute_m, speed_ms=speed, workers=workers, duration_s=duration)
     try:
-        if strategy == "fixed":
-            result = dict(dataclasses.asdict(energy.fixed_bound(rates)),
-                          constant_supply_work=energy.constant_supply_bound(rates).work)
-        else:
-            mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
-                                        transfer=transfer_rate, loss=transfer_loss)
-            found = (energy.mobile_bound(rates, mobile, transfer_period) if transfer_period
-                     else energy.best_transfer_period(rates, mobile))
-            if found is None or not found.feasible:
-                raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
-            result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
+        mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
+                                    transfer=transfer_rate, loss=transfer_loss)
+        found = (energy.mobile_bound(rates, mobile, transfer_period) if strategy == "mobile" and transfer_period
+                 else energy.strategy_bound(strategy, rates, mobile))
+        if found is None or not getattr(found, "feasible", True):
+            raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
+        result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
     except ValueError as exc:
         terminal.fail("bounds energy: %s" % exc)
     if as_json:

@@ -11,7 +11,7 @@ import click
 from .. import terminal
 from ..errors import InputError
 from ..options import FiniteFloat
-from .energy_replenishment.params import MAX_DURATION_S
+from .energy_replenishment.params import MAX_DURATION_S, STRIP_HALF_WIDTH_M
 from .cli import WORK_RATE, need_studies_extra, plot, sim, sweep
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
@@ -27,6 +27,8 @@ RATE_OPTIONS = (
     ("--work-rate", "work_rate", WORK_RATE, "Working, per second."),
     ("--core-rate", "core_rate", FiniteFloat(min=0), "Core, per second."),
     ("--duration", "duration_s", FiniteFloat(min=0, min_open=True, max=MAX_DURATION_S), "Trial length, seconds."),
+    ("--strip-inset", "strip_inset_m", FiniteFloat(0, STRIP_HALF_WIDTH_M),
+     "How far inside a strip's edges a robot stays, m (0.15: on the strip's centre line)."),
 )
 
 

@@ -10,8 +10,10 @@
  * own check says. The same draw in Python gives the event script of the reference trace.
  *
  * The logic runs from the control-logic flash page when it holds a valid image (swarmvm_logic_page.h):
- * the compiled-in image is loaded first, then swapped for the page's; a refused page is
- * reported on stderr with its SVM_ERR_* code and the compiled-in logic runs. The controller's
+ * the compiled-in image is loaded first, then swapped for the page's. A blank page (every byte
+ * 0xFF as erased flash, or 0x00 as QEMU's unloaded memory) is the expected state of a robot
+ * given no page yet and is reported as such; any other refused page is reported on stderr with
+ * its SVM_ERR_* code. Either way the compiled-in logic runs. The controller's
  * actions and checks are matched to the page image's events by name (events it does not
  * know get no action and a check that returns 0).
  *
@@ -100,6 +102,24 @@ static void put_trace_line(unsigned long step)
     (void)putchar('\n');
 }
 
+/* A page of one repeated byte, 0xFF (erased flash) or 0x00 (memory QEMU was given nothing for),
+ * has never been written: saying "blank" there, not "refused", keeps the expected state of a
+ * robot without a page from reading like a fault. */
+static int logic_page_is_blank(void)
+{
+    const uint8_t *page = svm_logic_page();
+    uint16_t i;
+    if (page[0] != 0xFFu && page[0] != 0x00u) {
+        return 0;
+    }
+    for (i = 1; i < svm_logic_page_size(); i++) {
+        if (page[i] != page[0]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Compiled-in logic first, then the flash page's if it holds a valid image. A refused
  * compiled-in image (corrupted: SVM_ERR_CRC) is reported and nothing runs, as on the robot. */
 static int load_logic(void)
@@ -115,8 +135,10 @@ static int load_logic(void)
     /* fputs, not fprintf: printf's formatter would triple the application's flash. */
     if (page == SVM_OK) {
         (void)fputs("logic page: running its image\n", stderr);
+    } else if (logic_page_is_blank()) {
+        (void)fputs("logic page: blank (never written), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
     } else {
-        (void)fputs("logic page: refused (swarmvm error ", stderr);
+        (void)fputs("logic page: not a valid image, refused (swarmvm error ", stderr);
         svm_put_decimal(to_stderr, (uint32_t)page);
         (void)fputs("), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
     }

@@ -1,5 +1,6 @@
 """The seed's Figures 16-20 from sweep results (:func:`sweep.load`), as deterministic PNGs
-(Agg backend, no timestamps in the files)."""
+(Agg backend, no timestamps in the files), each with its caption and its legends saying what
+its marks, bands and shades mean (:func:`..plotting.save`)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,32 @@ MAP_SOCS = np.arange(10, 101, 10)
 MAP_DISTANCES = np.arange(1000, 5001, 50)
 MAP_MASSES = np.round(np.arange(0.5, 5.0001, 0.05), 2)
 
+# The captions the PNGs carry and docs/studies/drone-delivery.md prints under each figure.
+FIGURE16_CAPTION = (
+    "%(title)s, %(runs)s runs per rule and mean inter-arrival time tau. (a) Delivered parcels "
+    "against the median delivery time (min, log scale): each point is the median over the runs at one tau, "
+    "labelled with that tau in minutes; its bars span the interquartile range of both quantities. "
+    "(b) Aborted attempts, per cent of take-offs, per tau: box = quartiles of the runs, black line = median, "
+    "whiskers to 1.5 x the interquartile range, circles = runs beyond. (c) Age of the orders still pending "
+    "at the end (days, mean over the runs), stacked by the week they arrived: lighter shades are earlier "
+    "weeks (legend: arrival week). Colours: the rules (legend of panel a).")
+FIGURE17_CAPTION = (
+    "Figure 17: fleet decision accuracy (per cent) at the end of each week (week 0: before the first "
+    "order), tau = %(tau)g min, %(runs)s runs per rule. Line: the mean over drones and runs; band: its "
+    "95 %% confidence interval (1.96 standard errors).")
+FIGURE18_CAPTION = (
+    "Figure 18: mean state of health (colour, 0.5-1) of the drone the least-confident rule deploys for a "
+    "task of distance (m, x) and parcel mass (kg, y), one panel (a)-(j) per state of charge 10-100 %%, "
+    "from the final policies of the %(runs)s runs at tau = %(tau)g min; white: no drone bids.")
+FIGURE20_CAPTION = (
+    "Figure 20: orders still pending at the end of the run, by the week they arrived, with and without reservation "
+    "bids (forecasting), tau = %(tau)g min, after %(learned)s weeks of learning; each bar is the mean of "
+    "%(runs)s runs.")
+# Each file's caption template (the figures' pages print them filled in).
+CAPTIONS = {"uav_fig16_rules.png": FIGURE16_CAPTION, "uav_fig17_accuracy.png": FIGURE17_CAPTION,
+            "uav_fig18_soh_maps.png": FIGURE18_CAPTION, "uav_fig19_threshold.png": FIGURE16_CAPTION,
+            "uav_fig20_forecast.png": FIGURE20_CAPTION}
+
 
 def _label(trials):
     return np.where(trials["rule"] == "threshold", "threshold " + (100 * trials["threshold"]).round().astype(int).astype(str) + "%",
@@ -29,14 +56,18 @@ def _measured(trials):
     return trials[(~trials["forecast"]) & (trials["pretrain_weeks"] == 0)]
 
 
-def figure16(plt, frames, path: Path, groups) -> Path:
+def figure16(plt, frames, path: Path, groups, title: str) -> Path:
     """(a) delivered vs median delivery time, (b) aborted attempts %, (c) backlog age by arrival week."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
     from matplotlib.ticker import ScalarFormatter
     trials = _measured(frames["trials"]).copy()
     trials["label"] = _label(trials)
     trials = trials[trials["label"].isin(groups)]
-    figure, axes = plt.subplots(1, 3, figsize=(12, 3.8))
+    figure, axes = plt.subplots(1, 3, figsize=(13, 4.4))
     taus = sorted(trials["tau_min"].unique())
+    weeks = sorted(frames["backlog"][frames["backlog"]["key"].isin(trials["key"])]["arrival_week"].unique())
+    shade = {week: 0.35 + 0.65 * (week + 1) / len(weeks) for week in weeks}
     for offset, label in enumerate(groups):
         rows = trials[trials["label"] == label]
         if rows.empty:
@@ -48,6 +79,8 @@ def figure16(plt, frames, path: Path, groups) -> Path:
         axes[0].errorbar(x, y, xerr=[x - stats["median_delivery_min"].quantile(0.25), stats["median_delivery_min"].quantile(0.75) - x],
                          yerr=[y - stats["delivered"].quantile(0.25), stats["delivered"].quantile(0.75) - y],
                          fmt="o-", color=colour, label=label, capsize=2, ms=3)
+        for tau, px, py in zip(x.index, x.values, y.values):
+            axes[0].annotate("%g" % tau, (px, py), textcoords="offset points", xytext=(3, 3), fontsize=6, color=colour)
         aborted = 100.0 * rows["aborted"] / rows["takeoffs"].where(rows["takeoffs"] > 0)
         axes[1].boxplot([aborted[rows["tau_min"] == t].dropna() for t in taus], positions=np.arange(len(taus)) * (len(groups) + 1) + offset,
                         widths=0.8, patch_artist=True, boxprops=dict(facecolor=colour), medianprops=dict(color="black"), flierprops=dict(ms=2))
@@ -57,19 +90,38 @@ def figure16(plt, frames, path: Path, groups) -> Path:
         positions = np.array([taus.index(t) for t in table.index]) * (len(groups) + 1) + offset
         for week in table.columns:
             axes[2].bar(positions, table[week].values, bottom=bottom, color=colour, edgecolor="white", width=0.8,
-                        alpha=0.35 + 0.65 * (week + 1) / len(table.columns))
+                        alpha=shade[week])
             bottom += table[week].values
     axes[0].set_xscale("log")
     axes[0].xaxis.set_major_formatter(ScalarFormatter())
     axes[0].set_xlabel("median delivery time (min)")
     axes[0].set_ylabel("delivered parcels")
-    axes[0].legend(fontsize=7)
-    for ax, name in ((axes[1], "aborted attempts (%)"), (axes[2], "backlog age at the end (days, by arrival week)")):
+    axes[0].set_title("(a) delivered against delivery time")
+    marks = [Line2D([], [], color="grey", marker="o", ms=3, linestyle="", label="point: median of the runs"),
+             Line2D([], [], color="grey", marker="|", ms=8, linestyle="-", label="bars: interquartile range"),
+             Line2D([], [], color="none", label="number by a point: tau (min)")]
+    axes[0].legend(handles=axes[0].get_legend_handles_labels()[0] + marks, fontsize=6.5, title="rule; marks")
+    axes[1].legend(handles=[Patch(facecolor="grey", edgecolor="black", label="box: quartiles of the runs"),
+                            Line2D([], [], color="black", label="line: median"),
+                            Line2D([], [], color="black", marker="o", ms=2, linestyle="",
+                                   label="circle: run beyond 1.5 x IQR")], fontsize=6.5)
+    axes[2].legend(handles=[Patch(facecolor="grey", alpha=shade[w], label="week %d" % (w + 1)) for w in weeks],
+                   fontsize=6, ncol=2, title="arrival week (shade)")
+    for ax, letter, name in ((axes[1], "(b)", "aborted attempts (% of take-offs)"),
+                             (axes[2], "(c)", "backlog age at the end (days)")):
         ax.set_xticks(np.arange(len(taus)) * (len(groups) + 1) + (len(groups) - 1) / 2)
         ax.set_xticklabels(["%g" % t for t in taus])
-        ax.set_xlabel("mean inter-arrival time (min)")
+        ax.set_xlabel("mean inter-arrival time tau (min)")
         ax.set_ylabel(name)
-    return _save(figure, path)
+        ax.set_title("%s %s" % (letter, name))
+    figure.suptitle(title)
+    return _save(figure, path, FIGURE16_CAPTION % dict(title=title, runs=_span(trials.groupby(["label", "tau_min"]).size())))
+
+
+def _span(counts) -> str:
+    """``20`` or ``5-20``: how many runs the points of a figure have."""
+    low, high = int(counts.min()), int(counts.max())
+    return "%d" % low if low == high else "%d-%d" % (low, high)
 
 
 def figure17(plt, frames, path: Path, tau: float) -> Path:
@@ -81,13 +133,14 @@ def figure17(plt, frames, path: Path, tau: float) -> Path:
     for rule, rows in accuracy.groupby("rule"):
         stats = rows.groupby("week")["accuracy"]
         mean, half = stats.mean(), 1.96 * stats.std(ddof=1).fillna(0.0) / np.sqrt(stats.count())
-        ax.plot(mean.index, 100 * mean, color=COLOURS[rule], label=rule)
-        ax.fill_between(mean.index, 100 * (mean - half), 100 * (mean + half), color=COLOURS[rule], alpha=0.25)
-    ax.set_xlabel("week")
+        ax.plot(mean.index, 100 * mean, color=COLOURS[rule], label="%s: mean" % rule)
+        ax.fill_between(mean.index, 100 * (mean - half), 100 * (mean + half), color=COLOURS[rule], alpha=0.25,
+                        label="%s: 95 %% confidence interval" % rule)
+    ax.set_xlabel("week (0: before the first order)")
     ax.set_ylabel("decision accuracy (%)")
-    ax.set_title("tau = %g min" % tau)
-    ax.legend()
-    return _save(figure, path)
+    ax.set_title("Figure 17: decision accuracy, tau = %g min" % tau)
+    ax.legend(fontsize=6.5, title="rule: line, band")
+    return _save(figure, path, FIGURE17_CAPTION % dict(tau=tau, runs=_span(trials.groupby("rule").size())))
 
 
 def figure18(plt, frames, path: Path, tau: float) -> Path:
@@ -108,16 +161,15 @@ def figure18(plt, frames, path: Path, tau: float) -> Path:
         for index, ax in enumerate(axes.ravel()):
             image = ax.imshow(mean[index].T, origin="lower", aspect="auto", cmap="coolwarm", vmin=0.5, vmax=1.0,
                               extent=(MAP_DISTANCES[0], MAP_DISTANCES[-1], MAP_MASSES[0], MAP_MASSES[-1]))
-            ax.set_title("SoC %d %%" % MAP_SOCS[index])
+            ax.set_title("(%s) SoC %d %%" % ("abcdefghij"[index], MAP_SOCS[index]))
             ax.set_xticks([1000, 3000, 5000])
-        figure.colorbar(image, ax=axes.ravel().tolist(), label="mean SoH of the winner")
+        figure.colorbar(image, ax=axes.ravel().tolist(), label="mean SoH of the winner (white: no drone bids)")
     for ax in axes[1]:
         ax.set_xlabel("distance (m)")
     for ax in axes[:, 0]:
         ax.set_ylabel("mass (kg)")
-    figure.savefig(str(path), dpi=110, metadata={"Software": None})
-    figure.clf()
-    return path
+    figure.suptitle("Figure 18: the drone the least-confident rule deploys, tau = %g min" % tau)
+    return _save(figure, path, FIGURE18_CAPTION % dict(tau=tau, runs=len(maps)), tight=False)
 
 
 def figure20(plt, frames, path: Path, tau: float) -> Path:
@@ -131,10 +183,12 @@ def figure20(plt, frames, path: Path, tau: float) -> Path:
         ax.bar(mean.index + 1 + (shift - 0.5) * 0.4, mean.values, width=0.4,
                label="with reservations" if forecast else "without", color="#66a61e" if forecast else "#a6761d")
     ax.set_xlabel("arrival week")
-    ax.set_ylabel("pending orders at the end (mean)")
-    ax.set_title("tau = %g min, after %s weeks of learning" % (tau, ", ".join(str(w) for w in sorted(trials["pretrain_weeks"].unique()))))
-    ax.legend()
-    return _save(figure, path)
+    ax.set_ylabel("pending orders at the end (mean of the runs)")
+    learned = ", ".join(str(w) for w in sorted(trials["pretrain_weeks"].unique()))
+    ax.set_title("Figure 20: tau = %g min, after %s weeks of learning" % (tau, learned))
+    ax.legend(title="bar: mean of the runs")
+    runs = _span(trials.groupby("forecast").size())
+    return _save(figure, path, FIGURE20_CAPTION % dict(tau=tau, learned=learned, runs=runs))
 
 
 def summary_markdown(frames) -> str:
@@ -176,7 +230,7 @@ def draw_all(results, out, tau: float = 20.0) -> Tuple[List[Path], List[str]]:
 
     learning = [r for r in ("least-confident", "most-confident", "random") if r in labels]
     if learning:
-        written.append(figure16(plt, frames, out / "uav_fig16_rules.png", learning))
+        written.append(figure16(plt, frames, out / "uav_fig16_rules.png", learning, "Figure 16: winner rules"))
         if at("Figure 17", bool(at_tau & set(learning))):
             written.append(figure17(plt, frames, out / "uav_fig17_accuracy.png", tau))
     if "least-confident" in labels and at("Figure 18", "least-confident" in at_tau):
@@ -184,7 +238,8 @@ def draw_all(results, out, tau: float = 20.0) -> Tuple[List[Path], List[str]]:
     thresholds = sorted((label for label in labels if label.startswith("threshold")),
                         key=lambda label: abs(int(label[10:-1]) - 80))
     if thresholds and "least-confident" in labels:       # against the best threshold of the seed, 80 %
-        written.append(figure16(plt, frames, out / "uav_fig19_threshold.png", ["least-confident", thresholds[0]]))
+        written.append(figure16(plt, frames, out / "uav_fig19_threshold.png", ["least-confident", thresholds[0]],
+                                "Figure 19: learning (least confident) against the threshold rule"))
     pretrained = trials[trials["pretrain_weeks"] > 0]
     if not pretrained.empty and at("Figure 20", bool(np.isclose(pretrained["tau_min"], tau).any())):
         written.append(figure20(plt, frames, out / "uav_fig20_forecast.png", tau))

@@ -139,3 +139,13 @@ def best_transfer_period(w: Rates, m: MobileRates, step_s: float = 0.1) -> Mobil
         return None
     best = max(b.duty_cycle for b in candidates)
     return [b for b in candidates if b.duty_cycle >= best - 1e-9][-1]
+
+
+def strategy_bound(strategy: str, w: Rates, m: MobileRates) -> Bound | MobileBound | None:
+    """The one bound of each strategy: what ``swarmvm bounds energy --strategy STRATEGY`` prints
+    and what ``sim energy``, ``sweep energy`` and the summary table measure a trial against.
+    Fixed chargers: equations 1-3. Mobile chargers: the seed's one-charger-per-worker analysis at
+    its best transfer period (None when no period is feasible); its duty cycle equals the
+    constant-supply bound's wherever a charger keeps up, and its efficiency counts the charger's
+    energy, which the constant supply's (0.947 at the default rates: workers only) does not."""
+    return fixed_bound(w) if strategy == "fixed" else best_transfer_period(w, m)

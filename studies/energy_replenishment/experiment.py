@@ -38,7 +38,7 @@ def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity
     ET.SubElement(params, "report", trace="true" if vm_traces else "false", summary="false")
     ET.SubElement(params, "energy", dict(capacity=_fmt(capacity), move=_fmt(p.per_step(p.move_rate)),
                                          core=_fmt(p.per_step(p.core_rate)), speed=_fmt(p.speed_cms),
-                                         noise=_fmt(p.steering_noise), **MOTION))
+                                         noise=_fmt(p.steering_noise), inset=_fmt(p.strip_inset_m), **MOTION))
 
 
 def _robots(arena: ET.Element, prefix: str, kind: str, count: int) -> None:

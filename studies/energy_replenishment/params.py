@@ -14,6 +14,7 @@ TICKS_PER_SECOND = 10
 # ARGoS keeps an experiment's length as a 32-bit count of clock ticks (its simulator.cpp casts
 # length x ticks_per_second to UInt32): a longer one would wrap round, or never end.
 MAX_DURATION_S = (2 ** 32 - 1) // TICKS_PER_SECOND
+STRIP_HALF_WIDTH_M = 0.15           # the strips are 0.3 m wide (argos/energy_agent.h)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -33,6 +34,7 @@ class Params:
     core_rate: float = 0.05
     speed_cms: float = 12.0           # e-puck top speed
     steering_noise: float = 0.05      # rad, standard deviation per step
+    strip_inset_m: float = 0.02       # a robot in a strip stays this far from its edges (0.15: on its centre line)
     duration_s: float = 600.0
     seed: int = 1
 
@@ -51,6 +53,8 @@ class Params:
                   (self.duration_s <= MAX_DURATION_S, "duration must be at most %d s (ARGoS counts an experiment's "
                                                       "length in 32-bit clock ticks)" % MAX_DURATION_S),
                   (self.steering_noise >= 0, "steering noise must not be negative"),
+                  (0 <= self.strip_inset_m <= STRIP_HALF_WIDTH_M,
+                   "the strip inset must be in [0, %g] m (half a strip's width)" % STRIP_HALF_WIDTH_M),
                   (0 <= self.seed < 2 ** 31, "seed must be in [0, 2^31)")]
         for ok, message in checks:
             if not ok:
@@ -70,10 +74,16 @@ class Params:
                             workers=self.workers, duration_s=self.duration_s,
                             work_per_second=TICKS_PER_SECOND)
 
-    def bound(self) -> bounds.Bound:
-        """What the trial is measured against: equations 1-3 for fixed chargers; for mobile
-        chargers the constant supply at the transfer strip (the seed's reference)."""
-        return bounds.fixed_bound(self.rates()) if self.strategy == "fixed" else bounds.constant_supply_bound(self.rates())
+    def mobile_rates(self) -> bounds.MobileRates:
+        """The chargers' side of the same scenario (they charge at the strip's rate)."""
+        return bounds.MobileRates(capacity=self.charger_capacity, charge=self.charge_rate, move=self.move_rate,
+                                  core=self.core_rate, transfer=self.transfer_rate, loss=self.transfer_loss)
+
+    def bound(self) -> bounds.Bound | bounds.MobileBound | None:
+        """What the trial is measured against: its strategy's bound (:func:`bounds.strategy_bound`,
+        the same numbers as ``swarmvm bounds energy``); None for mobile chargers that no transfer
+        period can sustain."""
+        return bounds.strategy_bound(self.strategy, self.rates(), self.mobile_rates())
 
     def replace(self, **changes) -> "Params":
         return dataclasses.replace(self, **changes)

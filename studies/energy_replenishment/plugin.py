@@ -4,7 +4,9 @@ controllers in argos/), the loop functions, one CMake build against real ARGoS.
 
 The cache key hashes every input (the C++ sources, the supervisors, the generated files, the
 ARGoS prefix), so editing any of them rebuilds; concurrent callers (the processes of a sweep)
-wait on a lock and a finished build is renamed into place, so a half-built plugin is never used."""
+wait on a lock and a finished build is renamed into place, so a half-built plugin is never used.
+A build takes about ten seconds: stderr says so, names the log that keeps its whole output, and
+reports make's per cent as it goes."""
 
 from __future__ import annotations
 
@@ -12,18 +14,20 @@ import fcntl
 import glob
 import hashlib
 import os
+import re
 import shutil
 import subprocess
 import tempfile
 from pathlib import Path
 
-from swarmvm import api
+from swarmvm import api, terminal
 
 PACKAGE = Path(__file__).resolve().parent
 SOURCES = PACKAGE / "argos"
 SUPERVISORS = PACKAGE / "supervisors"
 NAMES = ("energy_worker", "energy_worker_mc", "energy_charger")
 LIBRARY = "libenergy_study"
+PERCENT = re.compile(r"\[ *(\d+)%\]")   # make's progress, at the start of its lines
 
 
 class BuildError(RuntimeError):
@@ -44,7 +48,8 @@ def find_argos() -> Path:
     for prefix in candidates:
         if (prefix / "bin" / "argos3").is_file() and (prefix / "include" / "argos3").is_dir():
             return prefix
-    raise BuildError("ARGoS 3 not found: set ARGOS_PREFIX, or run scripts/argos.sh to build it")
+    raise BuildError("ARGoS 3 not found: install it (its source builds with cmake and make install), or set "
+                     "ARGOS_PREFIX to the folder holding its bin/argos3")
 
 
 def cache_root() -> Path:
@@ -73,6 +78,23 @@ def _key(folder: Path, prefix: Path, cxx_flags: str) -> str:
     return digest.hexdigest()[:16]
 
 
+def run_logged(command: list[str], log: Path, what: str, every: int = 25) -> bool:
+    """Runs ``command`` with its whole output appended to ``log``; on stderr, ``what`` and make's
+    per cent each time it has gone ``every`` points further, so that a wait says how far it is
+    without the build log. True when the command succeeded."""
+    shown = -every
+    with open(log, "a") as out, subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                                 text=True, errors="replace") as process:
+        assert process.stdout is not None
+        for text in process.stdout:
+            out.write(text)
+            done = PERCENT.match(text)
+            if done and (int(done.group(1)) >= shown + every or int(done.group(1)) == 100 > shown):
+                shown = int(done.group(1))
+                terminal.note("%s: %d%%" % (what, shown))
+    return process.returncode == 0
+
+
 def build(cache: Path | None = None, cxx_flags: str = "") -> Path:
     """The plugin library's path without its suffix (as ARGoS's ``library=`` takes it), built
     if this version of its sources has not been built yet (``cxx_flags``: extra compiler flags,
@@ -92,13 +114,15 @@ def build(cache: Path | None = None, cxx_flags: str = "") -> Path:
             fcntl.flock(lock, fcntl.LOCK_EX)
             if (done / "build" / (LIBRARY + ".so")).is_file():
                 return library
-            log = Path(temp) / "build.log"
-            with open(log, "w") as out:
-                for command in (["cmake", "-S", str(sources), "-B", str(sources / "build"), "-DCMAKE_BUILD_TYPE=Release",
-                                 "-DARGOS_PREFIX=%s" % prefix, "-DCMAKE_CXX_FLAGS=%s" % cxx_flags],
-                                ["cmake", "--build", str(sources / "build"), "-j", "2"]):
-                    if subprocess.run(command, stdout=out, stderr=subprocess.STDOUT).returncode != 0:
-                        raise BuildError("the energy plugin does not build:\n" + log.read_text()[-4000:])
+            log = root / "build.log"
+            log.write_text("")
+            terminal.note("building the energy study's ARGoS plugin, once for these sources (about 10 s); "
+                          "full output: %s" % log)
+            for command, what in ((["cmake", "-S", str(sources), "-B", str(sources / "build"), "-DCMAKE_BUILD_TYPE=Release",
+                                    "-DARGOS_PREFIX=%s" % prefix, "-DCMAKE_CXX_FLAGS=%s" % cxx_flags], "configuring"),
+                                  (["cmake", "--build", str(sources / "build"), "-j", "2"], "compiling the plugin")):
+                if not run_logged(command, log, what):
+                    raise BuildError("the energy plugin does not build:\n" + log.read_text()[-4000:])
             shutil.rmtree(done, ignore_errors=True)
             os.replace(sources, done)
     return library

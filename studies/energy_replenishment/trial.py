@@ -57,8 +57,11 @@ def run(p: Params, library: Path | None = None, trace: Path | None = None, basel
     if trace and not trace.is_file():
         raise TrialError("argos3 wrote no trace to %s (is its folder there and writable?)" % trace)
     bound = p.bound()
-    totals.update(bound_work=bound.work, bound_efficiency=bound.efficiency, work_of_bound=totals["work"] / bound.work,
-                  seconds=seconds)
+    if bound is None:
+        totals.update(bound_work=None, bound_efficiency=None, work_of_bound=None)
+    else:
+        totals.update(bound_work=bound.work, bound_efficiency=bound.efficiency, work_of_bound=totals["work"] / bound.work)
+    totals.update(seconds=seconds)
     return totals
 
 

@@ -29,9 +29,16 @@ class Project:
 
 def find_argos():
     """(exit status, install prefix or None, stderr) of scripts/argos.sh: finds ARGoS, or builds
-    it once from its source archive."""
-    result = subprocess.run([str(ARGOS_SH)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    return result.returncode, Path(result.stdout.strip()) if result.returncode == 0 else None, result.stderr
+    it once from its source archive. Its stderr is passed on to this process's as it comes: a
+    build's stages and progress must reach the terminal of `make argos-demo` during the wait."""
+    with subprocess.Popen([str(ARGOS_SH)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as process:
+        said = []
+        for line in process.stderr:   # stdout is one line, read after: no pipe fills up meanwhile
+            sys.stderr.write(line)
+            sys.stderr.flush()
+            said.append(line)
+        prefix = process.stdout.read().strip()
+    return process.returncode, Path(prefix) if process.returncode == 0 else None, "".join(said)
 
 
 def generate(supervisor, folder, name=None):

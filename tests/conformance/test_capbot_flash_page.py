@@ -144,16 +144,30 @@ def test_logic_hex_rule_writes_the_page(elf, tmp_path, made):
     assert mismatches(b, traces, info, (0,)) == []
 
 
-@pytest.mark.parametrize("with_page", [True, False], ids=["uav-page", "empty-page"])
-def test_application_runs_the_page_or_its_compiled_in_logic(made, with_page):
+PAGES = {   # what the page holds -> (model that runs, stderr of logic-vm.elf)
+    "uav-page": ("uav", "logic page: running its image\n"),
+    "unloaded-page": ("energy_worker", "logic page: blank (never written), running the compiled-in energy_worker\n"),
+    "erased-page": ("energy_worker", "logic page: blank (never written), running the compiled-in energy_worker\n"),
+    "damaged-page": ("energy_worker", "logic page: not a valid image, refused (swarmvm error %d), running the "
+                                      "compiled-in energy_worker\n" % SVM_ERR_CRC),
+}
+
+
+@pytest.mark.parametrize("page", sorted(PAGES))
+def test_application_runs_the_page_or_its_compiled_in_logic(made, tmp_path, page):
     """logic-vm.elf (energy_worker's application, page limits) runs uav from the page, with the
-    environment app_qemu.c plays; with an empty page it says why and runs energy_worker."""
+    environment app_qemu.c plays; otherwise it runs energy_worker and says why: a page never
+    written (QEMU's zeros, erased flash's 0xFF) plainly as blank, a damaged one as refused with its code."""
     vm_elf, hex_file = made
-    model = "uav" if with_page else "energy_worker"
+    model, message = PAGES[page]
     image = vm.Image.parse(batch(next(p for p in SUPERVISORS if p.endswith("/%s.yaml" % model))).image)
-    loader = ["-device", "loader,file=%s" % hex_file] if with_page else []
+    loader = {"uav-page": ["-device", "loader,file=%s" % hex_file], "unloaded-page": []}.get(page)
+    if loader is None:
+        raw = tmp_path / "page.bin"
+        uav = batch(next(p for p in SUPERVISORS if p.endswith("/uav.yaml"))).image
+        raw.write_bytes(b"\xff" * 4096 if page == "erased-page" else damaged(uav))
+        loader = ["-device", "loader,file=%s,addr=0x%x,force-raw=on" % (raw, PAGE)]
     status, stdout, stderr = qemu_harness.run(vm_elf, loader, timeout=30)
     assert status == 0
     assert stdout.splitlines() == vm.replay(vm.VM(image), environment_script(image))
-    assert stderr == ("logic page: running its image\n" if with_page else
-                           "logic page: refused (swarmvm error 1), running the compiled-in energy_worker\n")
+    assert stderr == message

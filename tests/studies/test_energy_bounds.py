@@ -72,3 +72,30 @@ def test_bounds_refuse_numbers_that_are_not_finite(option, value):
     """nan passed click's ranges and printed nan bounds, inf a misleading refusal."""
     result = CliRunner().invoke(main, ["bounds", "energy", option, value])
     assert result.exit_code == 2 and result.output == "swarmvm: error: %s: %s is not a finite number.\n" % (option, value)
+
+
+@pytest.mark.parametrize("options", [
+    [], ["--strategy", "mobile"],
+    ["--strategy", "mobile", "--transfer-loss", "0.3", "--charge-rate", "5", "--transfer-rate", "5"],
+    ["--strategy", "mobile", "--charger-capacity", "100", "--work-rate", "2"]])
+def test_a_trial_is_measured_against_the_bound_the_command_prints(options):
+    """Issue 27, point 12: `sim energy` and the summary table measured mobile chargers against
+    the constant supply's efficiency (0.9474, the workers' energy only) while `bounds energy
+    --strategy mobile` printed the seed's analysis (0.7773, the chargers' energy counted)."""
+    from swarmvm.studies.energy_replenishment.params import Params
+    printed = CliRunner().invoke(main, ["bounds", "energy", "--json", *options])
+    assert printed.exit_code == 0, printed.output
+    printed = json.loads(printed.output)
+    given = dict(zip(options[::2], options[1::2]))
+    fields = {"--strategy": ("strategy", str), "--transfer-loss": ("transfer_loss", float),
+              "--charge-rate": ("charge_rate", float), "--transfer-rate": ("transfer_rate", float),
+              "--charger-capacity": ("charger_capacity", float), "--work-rate": ("work_rate", float)}
+    trial = Params(**{fields[k][0]: fields[k][1](v) for k, v in given.items()}).bound()
+    assert (trial.work, trial.efficiency) == (printed["work"], printed["efficiency"])
+
+
+def test_mobile_bound_of_a_trial_is_the_seeds_analysis():
+    from swarmvm.studies.energy_replenishment.params import Params
+    mobile = Params(strategy="mobile").bound()
+    assert round(mobile.efficiency, 4) == 0.7773 and int(mobile.work) == 32563    # duty cycle: the constant supply's
+    assert Params(strategy="mobile", charger_capacity=1.0).bound() is None        # no transfer period is feasible

@@ -59,6 +59,7 @@ public:
             argos::GetNodeAttributeOrDefault(tEnergy, "margin", m_fMargin, m_fMargin);
             argos::GetNodeAttributeOrDefault(tEnergy, "speed", m_fMaxSpeed, m_fMaxSpeed);
             argos::GetNodeAttributeOrDefault(tEnergy, "noise", m_fNoise, m_fNoise);
+            argos::GetNodeAttributeOrDefault(tEnergy, "inset", m_fInset, m_fInset);
             argos::GetNodeAttributeOrDefault(tEnergy, "alpha", m_fAlpha, m_fAlpha);
             argos::GetNodeAttributeOrDefault(tEnergy, "beta", m_fBeta, m_fBeta);
             argos::GetNodeAttributeOrDefault(tEnergy, "gamma", m_fGamma, m_fGamma);
@@ -126,7 +127,7 @@ protected:
 
     // Towards (x, own y) while heading for a strip; once in `f_centre`'s strip, stay.
     argos::CVector2 StripGoal(double f_centre, bool b_stay) const {
-        const double fX = b_stay ? std::clamp(X(), f_centre - kStripHalfWidth + kInset, f_centre + kStripHalfWidth - kInset)
+        const double fX = b_stay ? std::clamp(X(), f_centre - kStripHalfWidth + m_fInset, f_centre + kStripHalfWidth - m_fInset)
                                  : f_centre;
         return ToLocal(argos::CVector2(fX - X(), 0.0));
     }
@@ -192,7 +193,6 @@ protected:
 
 private:
     static constexpr double kTicksPerSecond = 10.0;
-    static constexpr double kInset = 0.02;        // stay this far inside a strip's edge (m)
     static constexpr double kStop = 0.01;         // a smaller force leaves the robot still
     static constexpr double kAxle = 0.053;        // e-puck inter-wheel distance (m)
     static constexpr unsigned kPatience = 10;     // steps a partner may go unconfirmed
@@ -282,6 +282,7 @@ private:
     bool m_bMoving = false;
     double m_fMove = 0.1, m_fCore = 0.005, m_fHigh = 0.99, m_fMargin = 10.0, m_fMaxSpeed = 12.0, m_fNoise = 0.05;
     double m_fAlpha = 1.0, m_fBeta = 100.0, m_fGamma = 1.0, m_fSigma = 0.1, m_fLambda = 24.0;
+    double m_fInset = 0.02;   // once inside a strip, stay at least this far from its edges (m; 0.15: its centre line)
 };
 
 }  // namespace energy
