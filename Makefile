@@ -27,7 +27,8 @@ typecheck: setup
 test-quick: setup
 	$(PYTHON) -m pytest tests -m "not emulator and not slow"
 
-# Rewrite the golden copies of the example's generated code (tests/golden/) after an intended change.
+# Rewrite the golden copies (tests/golden/) after an intended change: every target's generated code
+# for the example and the feature models of tests/golden/golden.py, and gen's refusal messages.
 golden: setup
 	$(PYTHON) tests/golden/golden.py
 

@@ -23,7 +23,6 @@ from .inspect_page import ROBOT_STEPS, window
 from .options import SEED, FiniteFloat, OneLineErrors
 from .output import write_outputs
 from .runtime import python_vm
-from .studies import cli as studies_cli
 
 vm = python_vm()
 
@@ -323,7 +322,37 @@ def inspect(supervisor: str, traces: tuple[str, ...], output: str, name: str | N
         terminal.note("%d of %d robot-steps kept in full (the rest summarised): --first-step %d writes the next page"
                       % (page.kept, page.total, first_step + window(len(traces))))
 
-main.add_command(studies_cli.sim)
-main.add_command(studies_cli.sweep)
-main.add_command(studies_cli.plot)
-main.add_command(studies_cli.bounds)
+class StudyVerb(click.Group):
+    """A verb of the studies (sim, sweep, plot, bounds), whose subcommands (one per study) live in
+    swarmvm.studies and are imported only when the verb runs or lists them: the compiler's
+    verbs, and ``swarmvm --help``, neither need the studies nor pay for importing them."""
+
+    def _studies(self) -> dict[str, click.Command]:
+        from .studies.cli import SUBCOMMANDS
+        return {command.name: command for command in SUBCOMMANDS[self.name] if command.name}
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(self._studies())
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        return self._studies().get(cmd_name)
+
+
+@main.group(cls=StudyVerb)
+def sim() -> None:
+    """Run one trial of a study."""
+
+
+@main.group(cls=StudyVerb)
+def sweep() -> None:
+    """Run a study's grid of trials (resumable; local processes or a Dask cluster)."""
+
+
+@main.group(cls=StudyVerb)
+def plot() -> None:
+    """Draw a study's figures from sweep results."""
+
+
+@main.group(cls=StudyVerb)
+def bounds() -> None:
+    """Print a study's theoretical bounds."""

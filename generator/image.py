@@ -67,10 +67,11 @@ def digest(image):
     return hashlib.sha256(image).hexdigest()[:16]
 
 
-def chunks(image, size=8):
-    """The image as stream chunks (runtime_c/swarmvm_stream.h): a sequence number, then
-    ``size`` bytes of the image, the last chunk padded with zeros."""
+def chunks(image):
+    """The image as stream chunks (runtime_c/swarmvm_stream.h): a sequence number, then the
+    format's STREAM_CHUNK_DATA bytes of the image, the last chunk padded with zeros."""
+    size, most = FORMAT.STREAM_CHUNK_DATA, FORMAT.STREAM_MAX_CHUNKS
     count = (len(image) + size - 1) // size
-    if count > 256:
-        raise ValueError("an image of %d bytes needs %d chunks; a stream carries at most 256" % (len(image), count))
+    if count > most:
+        raise ValueError("an image of %d bytes needs %d chunks; a stream carries at most %d" % (len(image), count, most))
     return [bytes([k]) + image[k * size:(k + 1) * size].ljust(size, b"\0") for k in range(count)]

@@ -23,8 +23,9 @@ OPTIONAL = ("sup_current_state", "ev_shared", "ev_public", "sup_data_prob_pos", 
 # An event name: the image format's name bytes (swarmvm_format.NAME_CHARS), at most its
 # MAX_NAME_LENGTH (255) of them.
 NAME = re.compile(r"[A-Za-z0-9_]{0,%d}\Z" % image_format().MAX_NAME_LENGTH)
-# An event name as the published VMs take it (exact mode, `swarmvm pack`): any visible ASCII.
-WRITTEN = re.compile(r"[\x21-\x7e]{1,255}\Z")
+# An event name as the published VMs take it (exact mode, `swarmvm pack`): any visible ASCII, at
+# most MAX_NAME_LENGTH characters (the source section keeps it as written).
+WRITTEN = re.compile(r"[\x21-\x7e]{1,%d}\Z" % image_format().MAX_NAME_LENGTH)
 INTEGER = re.compile(r"[0-9]+\Z")
 # A probability as the tools write it: a decimal (an exponent of at most two digits) or a ratio.
 PROBABILITY = re.compile(r"[0-9]{1,30}(\.[0-9]{0,30})?([eE][-+]?[0-9]{1,2})?\Z|[0-9]{1,30}/[0-9]{1,30}\Z")
@@ -173,8 +174,9 @@ def _parse(r, published=False):
             r.fail(key, "missing key")
     # Unknown keys are tolerated (newer Nadzoru exports may add some) but reported.
     warnings = ["%s: %s: unknown key ignored" % (r.path, key) for key in doc if key not in REQUIRED + OPTIONAL]
-    n_events = r.int(doc["num_events"], "num_events", low=1, high=255)
-    n_sups = r.int(doc["num_supervisors"], "num_supervisors", low=1, high=255)
+    image = image_format()
+    n_events = r.int(doc["num_events"], "num_events", low=1, high=image.MAX_EVENTS)
+    n_sups = r.int(doc["num_supervisors"], "num_supervisors", low=1, high=image.MAX_SUPERVISORS)
 
     events: list = []
     seen: dict = {}
@@ -183,7 +185,8 @@ def _parse(r, published=False):
         if published and isinstance(raw, str) and WRITTEN.match(raw):
             bare = swarmvm_name(raw)
         elif not isinstance(raw, str) or not NAME.match(bare_name(raw)):
-            r.fail("events[%d]" % i, "%s is not an event name (at most 255 letters, digits and '_')" % show_value(raw))
+            r.fail("events[%d]" % i, "%s is not an event name (at most %d letters, digits and '_')"
+                   % (show_value(raw), image.MAX_NAME_LENGTH))
         else:
             bare = bare_name(raw)
         if bare in seen:

@@ -28,7 +28,14 @@ from .errors import InputError
 from .model import Model
 from .runtime import python_vm
 
-callback_stem = python_vm().callback_stem
+
+def callback_stem(name: str) -> str:
+    """The runtime's rule for the part of a callback's name that names its event (``_x`` ->
+    ``received_x``): defined once, in the Python VM, which is loaded on first use rather than
+    when this module is imported."""
+    stem: str = python_vm().callback_stem(name)
+    return stem
+
 
 KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
 
@@ -42,9 +49,10 @@ static_assert static_cast struct switch template this thread_local throw true tr
 typename union unsigned using virtual void volatile wchar_t while xor xor_eq
 NULL EOF main errno assert offsetof bool true false
 """.split())
+FILE_NAME_BYTES = 255          # file systems allow file names of 255 bytes
 # The longest file name gen writes is <model>_controller.cpp.new (a drifted ARGoS controller's fresh
-# skeleton); file systems allow 255 bytes.
-MAX_MODEL_NAME = 255 - len("_controller.cpp.new")
+# skeleton).
+MAX_MODEL_NAME = FILE_NAME_BYTES - len("_controller.cpp.new")
 # Prefixes the runtimes own: a model named like them would redefine runtime symbols. Compared in
 # any case (the runtimes have svm_* functions and SVM_* macros), except SCT: the C compatibility
 # layer's SCT_* functions clash with a model SCT only (SCT_vm), and the Python SCT names its own "sct".
@@ -61,7 +69,7 @@ def file_stem(stem: str, source: str, key: str = "--name") -> str:
     name = "m_" + name if name[:1].isdigit() else name
     if len(name) > MAX_MODEL_NAME:
         raise InputError(source, key, "model name of %d characters: at most %d, so that the generated file names "
-                         "fit 255 bytes: give a shorter one with %s" % (len(name), MAX_MODEL_NAME, key))
+                         "fit %d bytes: give a shorter one with %s" % (len(name), MAX_MODEL_NAME, FILE_NAME_BYTES, key))
     return name
 
 

@@ -20,25 +20,31 @@ RUNTIME_FORMAT_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_format.py"
 RUNTIME_LEARN_PY: Traversable = RUNTIME_PY_DIR / "swarmvm_learn.py"
 
 
-def _runtime_module(name: str) -> ModuleType:
-    """runtime_py's module ``name``, also registered as the top-level module ``name``: the name
-    generated Python targets import it by, and the runtime files each other (swarmvm_vm imports
-    swarmvm_format), so that code loaded in this process shares its classes (an ``ImageError``
-    raised there is the one the compiler catches)."""
-    module = sys.modules.get(name) or import_module("swarmvm.runtime_py." + name)
-    sys.modules.setdefault(name, module)
-    return module
-
-
 @lru_cache(maxsize=None)
 def image_format() -> ModuleType:
     """The table image format's one definition (runtime_py/swarmvm_format.py): its constants,
-    error codes, writer (``assemble``) and reader (``Image``)."""
-    return _runtime_module("swarmvm_format")
+    error codes, writer (``assemble``) and reader (``Image``). A plain import of the package's
+    own module (it imports the standard library only)."""
+    return import_module("swarmvm.runtime_py.swarmvm_format")
 
 
 @lru_cache(maxsize=None)
 def python_vm() -> ModuleType:
-    """The reference Python VM (runtime_py/swarmvm_vm.py), after the image format it imports."""
-    image_format()
-    return _runtime_module("swarmvm_vm")
+    """The reference Python VM (runtime_py/swarmvm_vm.py), loaded on first use.
+
+    The file imports the format by the top-level name a robot's copy has beside it
+    (``from swarmvm_format import ...``); here that name is the package's format module for the
+    import only, and the previous entry (none, or another copy a program loaded) comes back
+    after it. So the VM and the compiler share one ``Image`` and ``ImageError``, and loading
+    the VM registers no top-level module: a generated Python target imported in the same
+    process still finds its own copy of the runtime."""
+    name = "swarmvm_format"
+    previous = sys.modules.get(name)
+    sys.modules[name] = image_format()
+    try:
+        return import_module("swarmvm.runtime_py.swarmvm_vm")
+    finally:
+        if previous is None:
+            del sys.modules[name]
+        else:
+            sys.modules[name] = previous

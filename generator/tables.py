@@ -11,7 +11,7 @@ from fractions import Fraction
 from math import floor
 from typing import Optional
 
-Q15_ONE = 32768
+from .runtime import image_format
 
 
 @dataclass(frozen=True)
@@ -42,8 +42,18 @@ class Tables:
 
 
 def q15(probability):
-    """A probability as an unsigned Q15 fixed-point number (1.0 = 32768), rounded half up."""
-    return min(Q15_ONE, floor(Fraction(probability) * Q15_ONE + Fraction(1, 2)))
+    """A probability as an unsigned Q15 fixed-point number (1.0 = the format's Q15_ONE), rounded
+    half up."""
+    one = image_format().Q15_ONE
+    return min(one, floor(Fraction(probability) * one + Fraction(1, 2)))
+
+
+def state_width(widest):
+    """Bytes of a target state number for supervisors of at most ``widest`` states: the
+    narrowest of the format's STATE_WIDTHS that numbers them all (the widest when none does:
+    so many states are over the format's MAX_STATES, which packing refuses)."""
+    widths = image_format().STATE_WIDTHS
+    return next((width for width in widths if widest <= 1 << 8 * width), widths[-1])
 
 
 def _mask(indices):
@@ -61,6 +71,7 @@ def build_tables(model):
     first: list[int] = []
     targets: list[int] = []
     probs: list[int] = []
+    one = image_format().Q15_ONE
     for sup in model.supervisors:
         sup_first.append(len(defined))
         sup_count.append(len(sup.states))
@@ -69,11 +80,10 @@ def build_tables(model):
             first.append(len(targets))
             for e, target, p in row:
                 targets.append(target)
-                probs.append(Q15_ONE if p is None or not model.controllable[e] else q15(p))
-    widest = max(sup_count)
+                probs.append(one if p is None or not model.controllable[e] else q15(p))
     return Tables(
         num_events=len(model.events), num_supervisors=len(model.supervisors),
-        mask_bytes=(len(model.events) + 7) // 8, state_width=1 if widest <= 256 else 2,
+        mask_bytes=(len(model.events) + 7) // 8, state_width=state_width(max(sup_count)),
         controllable=_mask(i for i, c in enumerate(model.controllable) if c),
         public=_mask(i for i, p in enumerate(model.public) if p),
         sup_alphabet=tuple(_mask(s.alphabet) for s in model.supervisors),

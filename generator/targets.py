@@ -8,11 +8,12 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Callable
 
-from . import __version__, argos, kilobot
+from . import __version__, argos, kilobot, target_values
 from .errors import InputError
 from .escape import UnsafeText
 from .render import context, render
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
+from .target_values import runtime_files
 
 
 @dataclass(frozen=True)
@@ -23,6 +24,7 @@ class Target:
     learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
     learned_copies: tuple = field(default=())
     prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
+    values: Callable[..., dict] | None = None    # values(compiled) -> template values decided in Python
     keeps_order: bool = False            # its image keeps the source order (the Python SCT's exact mode)
 
 
@@ -30,13 +32,15 @@ class Target:
 # apps (python3 -m <name>_app) share: their options and fixed-rate loop.
 PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"),
                      (RUNTIME_PY_DIR / "swarmvm_app.py", "swarmvm_app.py"))
-C_RUNTIME_COPIES = tuple((RUNTIME_C / n, n) for n in (
-    "swarmvm.h", "swarmvm.c", "swarmvm_sct.h", "swarmvm_sct.c", "swarmvm_trace.h"))
-# The learned selection policy kept in a power-cut-safe store (docs/learning.md), built on request.
-C_LEARN_COPIES = tuple((RUNTIME_C / n, n) for n in (
-    "swarmvm_learn.h", "swarmvm_learn.c", "swarmvm_learn_store.h", "swarmvm_learn_store.c",
-    "swarmvm_store.h", "swarmvm_store.c"))
-CAPBOT_RUNTIME_COPIES = C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in ("swarmvm_logic_page.h", "swarmvm_logic_page.c"))
+
+
+def c_copies(*groups, folder=""):
+    """The C runtime's files of ``groups`` (target_values.RUNTIME_GROUPS) as copies into ``folder``."""
+    return tuple((RUNTIME_C / n, folder + n) for n in runtime_files(*groups))
+
+
+# What every C target ships: the VM, Nadzoru 2's C API over it, the canonical trace line.
+C_RUNTIME_GROUPS = ("core", "sct", "trace")
 
 TARGETS = {
     "python": Target(
@@ -73,7 +77,8 @@ TARGETS = {
                    ("c/main.c.j2", "{name}_main.c", False),
                    ("c/Makefile.j2", "Makefile", False),
                    ("c/controller.c.j2", "{name}_controller.c", True)),
-        copies=C_RUNTIME_COPIES),
+        copies=c_copies(*C_RUNTIME_GROUPS),
+        values=target_values.c_values),
     "kilobot": Target(
         "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, new images streamed over messages, Makefile, controller skeleton",
         templates=(("c/tables.h.j2", "{name}_tables.h", False),
@@ -82,10 +87,8 @@ TARGETS = {
                    ("kilobot/app.c.j2", "{name}_app.c", False),
                    ("kilobot/Makefile.j2", "Makefile", False),
                    ("kilobot/controller.c.j2", "{name}_controller.c", True)),
-        copies=C_RUNTIME_COPIES + tuple((RUNTIME_C / n, n) for n in (
-            "swarmvm_stream.h", "swarmvm_stream.c", "swarmvm_kilobot.h", "swarmvm_kilobot.c",
-            "swarmvm_kilobot_eeprom.h")) + C_LEARN_COPIES,
-        prepare=kilobot.prepare),
+        copies=c_copies(*C_RUNTIME_GROUPS, "stream", "kilobot", "kilobot_eeprom", "learn"),
+        prepare=kilobot.prepare, values=target_values.kilobot_values),
     "capbot": Target(
         "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
         templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
@@ -95,8 +98,8 @@ TARGETS = {
                    ("c/tables.h.j2", "src/{name}_tables.h", False),
                    ("c/tables.c.j2", "src/{name}_tables.c", False),
                    ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=tuple((source, "src/" + output) for source, output in CAPBOT_RUNTIME_COPIES + C_LEARN_COPIES + tuple(
-            (RUNTIME_C / n, n) for n in ("swarmvm_store_zephyr.h", "swarmvm_store_zephyr.c")))),
+        copies=c_copies(*C_RUNTIME_GROUPS, "logic_page", "learn", "store_zephyr", folder="src/"),
+        values=target_values.capbot_values),
 }
 
 
@@ -110,6 +113,8 @@ def generate(compiled, target, **options):
         extra = spec.prepare(compiled) if spec.prepare else {}
     except InputError as error:         # refused for this target only: say which
         raise InputError(error.file, error.key, "target %s: %s" % (target, error.message), error.where)
+    if spec.values:
+        extra = dict(extra, **spec.values(compiled))
     values = context(compiled, target=target, **dict(options, **extra))
     templates, copies = spec.templates, spec.copies
     if options.get("learned_checks"):

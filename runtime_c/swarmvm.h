@@ -4,8 +4,8 @@
  *
  * C99, no heap, no stdio, no floating point. The image is never copied: the VM keeps a
  * pointer to it and a few section offsets, so its RAM is the current states, the previous
- * check values (edge mode), the generator state, those offsets and the hooks (48 bytes for
- * the Kilobot example energy_worker). The image may sit in flash: on AVR, svm_load_P() takes
+ * check values (edge mode), the generator state, those offsets and the hooks (runtime_c/README.md,
+ * "Figures"). The image may sit in flash: on AVR, svm_load_P() takes
  * a PROGMEM image and table reads go through pgm_read_byte/word/dword; svm_load() takes an image
  * in RAM, svm_load_E() one in EEPROM (loaded at run time). Elsewhere all are plain reads.
  *
@@ -24,6 +24,11 @@
  *                         (default on AVR, where it saves about 4 % of a step, but at -Os,
  *                         which asks for flash first, and on hosts; not on bare-metal ARM),
  *                         0: arithmetic
+ *   SVM_CRC_TABLE         1: the image checksum (CRC-16/MCRF4XX, swarmvm.c) looks up four
+ *                         512-byte tables, four image bytes a step (default on hosts),
+ *                         0: computes each byte with shifts (default on AVR, by avr-libc's
+ *                         _crc_ccitt_update, and on bare-metal ARM). Hosts only: 1 on AVR
+ *                         is an #error (the tables would be copied into RAM)
  *
  * Features (each 1 by default; a build that does not use one sets it to 0 and its code is not
  * compiled: the generated Kilobot Makefile keeps only what its program calls):
@@ -42,6 +47,10 @@
 #define SWARMVM_H
 
 #include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #ifndef SVM_MAX_EVENTS
 #define SVM_MAX_EVENTS 64
@@ -86,10 +95,15 @@
 #define SVM_WITH_LEARNED 1
 #endif
 
-#if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > 255
+/* The image format's own limits (docs/image-format.md): a build's SVM_MAX_* stay within them. */
+#define SVM_FORMAT_MAX_EVENTS 255u
+#define SVM_FORMAT_MAX_SUPERVISORS 255u
+#define SVM_FORMAT_MAX_STATES 65535u
+
+#if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > SVM_FORMAT_MAX_EVENTS
 #error "SVM_MAX_EVENTS must be 1..255 (the image format's limit)"
 #endif
-#if SVM_MAX_SUPERVISORS < 1 || SVM_MAX_SUPERVISORS > 255
+#if SVM_MAX_SUPERVISORS < 1 || SVM_MAX_SUPERVISORS > SVM_FORMAT_MAX_SUPERVISORS
 #error "SVM_MAX_SUPERVISORS must be 1..255 (the image format's limit)"
 #endif
 
@@ -100,7 +114,7 @@
 #define SVM_MAX_VIOLATIONS 0xFFFFFFFFUL
 
 /* A supervisor's current state, as a global state number (index of its record). */
-#if SVM_MAX_STATES < 1 || SVM_MAX_STATES > 65535
+#if SVM_MAX_STATES < 1 || SVM_MAX_STATES > SVM_FORMAT_MAX_STATES
 #error "SVM_MAX_STATES must be 1..65535 (the image format's limit)"
 #endif
 #if SVM_MAX_STATES <= 256
@@ -357,5 +371,9 @@ uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap
 
 /* Index of the `n`-th set bit (n from 0) of an event mask of `bytes` bytes; 255 if none. */
 uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_H */

@@ -47,6 +47,10 @@
 #include "swarmvm_kilobot_eeprom.h"
 #include "swarmvm_stream.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifndef SVM_KILOBOT_TICKS_PER_STEP
 #define SVM_KILOBOT_TICKS_PER_STEP 1u
 #endif
@@ -135,5 +139,9 @@ unsigned char svm_kilobot_take(uint8_t event);
 /* Called after each step, in loop(). The runtime's definition is weak and empty: a program may
  * define its own (e.g. to print a trace line). */
 void svm_kilobot_after_step(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_KILOBOT_H */

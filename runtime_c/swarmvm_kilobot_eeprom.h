@@ -11,7 +11,15 @@
 #ifndef SWARMVM_KILOBOT_EEPROM_H
 #define SWARMVM_KILOBOT_EEPROM_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The first EEPROM address kilolib leaves free (its UID ends at 0xB1). */
 #define SVM_KILOBOT_EEPROM_FREE 0xB2u
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_KILOBOT_EEPROM_H */

@@ -21,6 +21,10 @@
 
 #include "swarmvm.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifndef SVL_REAL
 #define SVL_REAL double
 #endif
@@ -110,5 +114,9 @@ uint16_t svl_policy_save(const svl_policy_t *p, uint32_t *words, uint16_t cap);
 
 /* Load a saved array; returns 0, or -1 on a wrong magic/version/size or checksum. */
 int svl_policy_load(svl_policy_t *p, const uint32_t *words, uint16_t count);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_LEARN_H */

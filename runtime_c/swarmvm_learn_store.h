@@ -25,6 +25,10 @@
 #include "swarmvm_learn.h"
 #include "swarmvm_store.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Words and bytes of a saved policy with `theta` preferences (svl_policy_save's words). */
 #define SVL_KEEPER_WORDS(theta) (SVL_POLICY_HEADER_WORDS + (theta) + 1u)
 #define SVL_KEEPER_RECORD_BYTES(theta) (4u * SVL_KEEPER_WORDS(theta))
@@ -75,5 +79,9 @@ int svl_keeper_reward(svl_keeper_t *k, int32_t reward_q16);
 
 /* Save now (e.g. before a planned shutdown): 0, or -1. */
 int svl_keeper_save(svl_keeper_t *k);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_LEARN_STORE_H */

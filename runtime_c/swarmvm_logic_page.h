@@ -20,6 +20,10 @@
 
 #include "swarmvm.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* to_compiled[] value of an event the compiled-in controller does not know. */
 #define SVM_LOGIC_NO_EVENT 0xFFu
 
@@ -40,5 +44,9 @@ int svm_logic_page_validate(void);
  * event e, matched by name (by index for an image without names), or SVM_LOGIC_NO_EVENT: the
  * controller's dispatch is written for the compiled-in events. */
 int svm_logic_page_load(svm_vm_t *vm, const uint8_t *compiled, uint16_t compiled_length, uint8_t *to_compiled);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_LOGIC_PAGE_H */

@@ -19,6 +19,10 @@
 
 #include "swarmvm.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 void SCT_init(void);
 void SCT_reset(void);
 void SCT_add_callback(unsigned char event, void (*clbk)(void *), unsigned char (*ci)(void *), void *data);
@@ -29,5 +33,9 @@ svm_vm_t *SCT_vm(void);
 
 /* Supplied by the generated tables: load the compiled-in image into `vm`. */
 int svm_sct_load(svm_vm_t *vm);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_SCT_H */

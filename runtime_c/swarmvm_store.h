@@ -30,6 +30,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define SVM_STORE_EMPTY 0xFFu       /* an erased byte: no record */
 #define SVM_STORE_COMMITTED 0x5Au   /* every other byte of the slot was written */
 #define SVM_STORE_OVERHEAD 9u       /* state, sequence, length, CRC (write block 1) */
@@ -75,6 +79,10 @@ int32_t svm_store_load(const svm_store_t *store, uint8_t *data, uint16_t cap, ui
 /* The store on the ATmega328P's EEPROM from `base` (on a Kilobot at or above
  * SVM_KILOBOT_EEPROM_FREE, swarmvm_kilobot_eeprom.h), two slots of `slot_size` bytes. */
 void svm_store_avr_eeprom(svm_store_t *store, uint16_t base, uint16_t slot_size);
+#endif
+
+#ifdef __cplusplus
+}
 #endif
 
 #endif /* SWARMVM_STORE_H */

@@ -20,6 +20,10 @@
 
 #include "swarmvm_store.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct svm_store_zephyr {
     svm_store_t store;              /* give &z.store to svm_store_save / _load, svl_keeper_start */
     const struct flash_area *area;
@@ -29,5 +33,9 @@ typedef struct svm_store_zephyr {
  * `record_bytes`: 0, or a negative errno (the area's, or -EINVAL when the flash's write block
  * is over SVM_STORE_MAX_BLOCK, or -ENOSPC when two slots do not fit the partition or 64 KB). */
 int svm_store_zephyr_flash(svm_store_zephyr_t *z, uint8_t area_id, uint16_t record_bytes);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SWARMVM_STORE_ZEPHYR_H */

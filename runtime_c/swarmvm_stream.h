@@ -17,6 +17,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define SVM_CHUNK_BYTES 9u
 #define SVM_CHUNK_DATA 8u
 
@@ -46,5 +50,9 @@ uint8_t svm_stream_feed(svm_stream_t *stream, const uint8_t chunk[SVM_CHUNK_BYTE
 
 /* The image's length once COMPLETE (0 otherwise). */
 uint16_t svm_stream_length(const svm_stream_t *stream);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

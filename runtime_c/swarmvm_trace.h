@@ -10,6 +10,10 @@
 
 #include "swarmvm.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef void (*svm_putc_fn)(char c);
 
 static inline void svm_put_text(svm_putc_fn put, const char *text)
@@ -78,5 +82,9 @@ static inline void svm_put_trace_line(svm_putc_fn put, const svm_vm_t *vm, uint3
     put(' ');
     svm_put_decimal(put, svm_violations(vm));
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

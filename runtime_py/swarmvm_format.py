@@ -83,7 +83,13 @@ Q15_ONE = 32768
 
 # Bytes an event name may hold (the input languages' rule: letters, digits and '_').
 NAME_CHARS = frozenset(b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ_abcdefghijklmnopqrstuvwxyz")
-MAX_NAME_LENGTH = 0xFF
+MAX_NAME_LENGTH = 0xFF              # a name's length is one byte
+
+# Streaming an image (docs/image-format.md, "Streaming an image"; swarmvm_stream.h): a chunk is a
+# one-byte sequence number and STREAM_CHUNK_DATA bytes of the image, so a stream has at most
+# STREAM_MAX_CHUNKS chunks.
+STREAM_CHUNK_DATA = 8
+STREAM_MAX_CHUNKS = 0x100
 
 
 class ErrorCode(enum.IntEnum):

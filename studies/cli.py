@@ -1,22 +1,22 @@
-"""Command groups of the studies: ``swarmvm sim|sweep|plot <study>`` (registered by the main
-command line). Each study adds one subcommand per group; the drone-delivery study is ``uav``."""
+"""The studies' subcommands of ``swarmvm sim|sweep|plot|bounds <study>``: the drone-delivery
+study's (``uav``) here, the energy-replenishment study's (``energy``) in energy_commands.
+
+The verbs themselves are groups of the main command line (swarmvm.cli), which imports
+:data:`SUBCOMMANDS` only when one of them runs or shows its help: the compiler's verbs never
+import the studies."""
 
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
 import json
 
 import click
 
 from .. import terminal
 from ..options import SEED, FiniteFloat
+from . import energy_commands
 from .drone_delivery.params import RULES, Params
-
-# The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
-# spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
-# a work rate of 0), and the mobile bound divides by the work rate.
-WORK_RATE = FiniteFloat(min=0, min_open=True)
+from .extra import need_studies_extra
 
 # Help for the options generated from Params (one per field; defaults are Table 2's).
 HELP = dict(
@@ -85,34 +85,7 @@ def make_params(values: dict) -> Params:
         terminal.fail(exc)
 
 
-# What `pip install "swarmvm[studies]"` adds (pyproject.toml), by import name.
-STUDIES_EXTRA = ("numpy", "pandas", "pyarrow", "dask", "tqdm", "matplotlib")
-
-
-def need_studies_extra() -> None:
-    """Ends with one line and exit status 2 when the studies' dependencies are not installed
-    (a plain `pip install swarmvm` leaves them out), instead of an ImportError traceback."""
-    missing = [name for name in STUDIES_EXTRA if importlib.util.find_spec(name) is None]
-    if missing:
-        terminal.fail("the studies need %s: pip install \"swarmvm[studies]\"" % ", ".join(missing))
-
-
-@click.group()
-def sim():
-    """Run one trial of a study."""
-
-
-@click.group()
-def sweep():
-    """Run a study's grid of trials (resumable; local processes or a Dask cluster)."""
-
-
-@click.group()
-def plot():
-    """Draw a study's figures from sweep results."""
-
-
-@sim.command("uav")
+@click.command("uav")
 @params_options()
 @click.option("--mode", type=click.Choice(["event", "tick"]), default="event", show_default=True,
               help="Event-driven engine, or plain tick by tick (slow; for validation).")
@@ -133,7 +106,7 @@ def sim_uav(mode, as_json, **values):
     terminal.line("%-20s %.2f s (CPU %.2f s)" % ("time", summary["seconds"], summary["cpu_seconds"]))
 
 
-@sweep.command("uav")
+@click.command("uav")
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
 @click.option("--rules", default="least-confident,most-confident,random", show_default=True,
               help="Learning rules (comma-separated); '' for none.")
@@ -160,7 +133,7 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
-@plot.command("uav")
+@click.command("uav")
 @click.argument("results", type=click.Path(exists=True, file_okay=False))
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
 @click.option("--tau", default=20.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
@@ -176,60 +149,11 @@ def plot_uav(results, out, tau):
         terminal.note("uav: %s: give --tau one of them" % text)
 
 
-COMMANDS = (sim, sweep, plot)
-__all__ = ["sim", "sweep", "plot", "COMMANDS"]
-
-
-@click.group()
-def bounds():
-    """Print a study's theoretical bounds."""
-
-
-@bounds.command("energy")
-@click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
-              help="Fixed chargers (equations 1-3) or one mobile charger per worker.")
-@click.option("--workers", default=6, show_default=True, type=click.IntRange(1), help="n_w.")
-@click.option("--capacity", default=100.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
-              help="Worker capacity c_w,max.")
-@click.option("--charge-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
-              help="Charging rate per second (workers and chargers).")
-@click.option("--move-rate", default=1.0, show_default=True, type=FiniteFloat(min=0), help="Moving, per second.")
-@click.option("--work-rate", default=1.0, show_default=True, type=WORK_RATE, help="Working, per second.")
-@click.option("--core-rate", default=0.05, show_default=True, type=FiniteFloat(min=0), help="Core, per second.")
-@click.option("--commute-m", default=1.0, show_default=True, type=FiniteFloat(min=0),
-              help="Distance between the charging (or transfer) and work regions.")
-@click.option("--speed", default=0.12, show_default=True, type=FiniteFloat(min=0, min_open=True), help="m/s.")
-@click.option("--duration", default=600.0, show_default=True, type=FiniteFloat(min=0), help="tau, seconds.")
-@click.option("--charger-capacity", default=200.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
-              help="Mobile charger capacity c_m,max.")
-@click.option("--transfer-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
-              help="What a mobile charger gives per second.")
-@click.option("--transfer-loss", default=0.0, show_default=True, type=FiniteFloat(0, 1, max_open=True),
-              help="Share of a transfer that is lost (1 - xi).")
-@click.option("--transfer-period", type=FiniteFloat(min=0, min_open=True), default=None,
-              help="Mobile: analyse this transfer period (s) instead of finding the best.")
-@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate, core_rate, commute_m, speed,
-                  duration, charger_capacity, transfer_rate, transfer_loss, transfer_period, as_json):
-    """Energy replenishment: work W, duty cycle and efficiency E the strategy cannot exceed."""
-    from .energy_replenishment import bounds as energy
-    rates = energy.Rates(capacity=capacity, charge=charge_rate, move=move_rate, work=work_rate, core=core_rate,
-                         commute_m=commute_m, speed_ms=speed, workers=workers, duration_s=duration)
-    try:
-        mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
-                                    transfer=transfer_rate, loss=transfer_loss)
-        found = (energy.mobile_bound(rates, mobile, transfer_period) if strategy == "mobile" and transfer_period
-                 else energy.strategy_bound(strategy, rates, mobile))
-        if found is None or not getattr(found, "feasible", True):
-            raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
-        result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
-    except ValueError as exc:
-        terminal.fail("bounds energy: %s" % exc)
-    if as_json:
-        terminal.line(json.dumps(result, sort_keys=True))
-        return
-    for key, value in result.items():
-        terminal.line("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))
-
-
-from . import energy_commands  # noqa: E402,F401  (registers `sim|sweep|plot energy`)
+# Each verb's subcommands, one per study (the verb's group is swarmvm.cli's).
+SUBCOMMANDS: dict[str, tuple[click.Command, ...]] = {
+    "sim": (sim_uav, energy_commands.sim_energy),
+    "sweep": (sweep_uav, energy_commands.sweep_energy),
+    "plot": (plot_uav, energy_commands.plot_energy),
+    "bounds": (energy_commands.bounds_energy,),
+}
+__all__ = ["SUBCOMMANDS"]

@@ -1,8 +1,10 @@
-"""``swarmvm sim|sweep|plot energy``: the energy-replenishment study in real ARGoS (its bounds
-are ``swarmvm bounds energy``, in cli.py). Registered on the study command groups of cli.py."""
+"""``swarmvm sim|sweep|plot energy``: the energy-replenishment study in real ARGoS, and
+``swarmvm bounds energy``, its theoretical bounds. cli.py lists them among the studies'
+subcommands (its SUBCOMMANDS); this module imports nothing of cli.py."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -12,7 +14,12 @@ from .. import terminal
 from ..errors import InputError
 from ..options import FiniteFloat
 from .energy_replenishment.params import MAX_DURATION_S, STRIP_HALF_WIDTH_M
-from .cli import WORK_RATE, need_studies_extra, plot, sim, sweep
+from .extra import need_studies_extra
+
+# The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
+# spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
+# a work rate of 0), and the mobile bound divides by the work rate.
+WORK_RATE = FiniteFloat(min=0, min_open=True)
 
 # Options shared by `sim energy` and `sweep energy`: (flag, Params field, type, help).
 RATE_OPTIONS = (
@@ -63,7 +70,7 @@ def fail(message: str, status: int = 2):
     terminal.fail("energy: %s" % message, status)
 
 
-@sim.command("energy")
+@click.command("energy")
 @click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
               help="Workers recharge in the charging strip, or mobile chargers bring them energy.")
 @click.option("--workers", default=6, show_default=True, type=click.IntRange(1, 100), help="n_w.")
@@ -94,7 +101,7 @@ def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **v
         terminal.line("%-18s %s" % (key, round(value, 4) if isinstance(value, float) else value))
 
 
-@sweep.command("energy")
+@click.command("energy")
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
 @click.option("--figures", default="9,10,11,12", show_default=True, help="The seed's figures whose grids to run.")
 @click.option("--runs", default=50, show_default=True, type=click.IntRange(1), help="Trials (seeds) per configuration.")
@@ -119,7 +126,7 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
-@plot.command("energy")
+@click.command("energy")
 @click.argument("results", type=click.Path(exists=True, file_okay=False))
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Folder for the PNG files.")
 @rate_options
@@ -134,3 +141,50 @@ def plot_energy(results, out, **values):
     for title in missing:
         terminal.note("energy: %s: no trials at these rates (give plot the rate options the sweep had, and a "
                       "sweep of its --figures)" % title)
+
+
+@click.command("energy")
+@click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
+              help="Fixed chargers (equations 1-3) or one mobile charger per worker.")
+@click.option("--workers", default=6, show_default=True, type=click.IntRange(1), help="n_w.")
+@click.option("--capacity", default=100.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
+              help="Worker capacity c_w,max.")
+@click.option("--charge-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
+              help="Charging rate per second (workers and chargers).")
+@click.option("--move-rate", default=1.0, show_default=True, type=FiniteFloat(min=0), help="Moving, per second.")
+@click.option("--work-rate", default=1.0, show_default=True, type=WORK_RATE, help="Working, per second.")
+@click.option("--core-rate", default=0.05, show_default=True, type=FiniteFloat(min=0), help="Core, per second.")
+@click.option("--commute-m", default=1.0, show_default=True, type=FiniteFloat(min=0),
+              help="Distance between the charging (or transfer) and work regions.")
+@click.option("--speed", default=0.12, show_default=True, type=FiniteFloat(min=0, min_open=True), help="m/s.")
+@click.option("--duration", default=600.0, show_default=True, type=FiniteFloat(min=0), help="tau, seconds.")
+@click.option("--charger-capacity", default=200.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
+              help="Mobile charger capacity c_m,max.")
+@click.option("--transfer-rate", default=10.0, show_default=True, type=FiniteFloat(min=0, min_open=True),
+              help="What a mobile charger gives per second.")
+@click.option("--transfer-loss", default=0.0, show_default=True, type=FiniteFloat(0, 1, max_open=True),
+              help="Share of a transfer that is lost (1 - xi).")
+@click.option("--transfer-period", type=FiniteFloat(min=0, min_open=True), default=None,
+              help="Mobile: analyse this transfer period (s) instead of finding the best.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def bounds_energy(strategy, workers, capacity, charge_rate, move_rate, work_rate, core_rate, commute_m, speed,
+                  duration, charger_capacity, transfer_rate, transfer_loss, transfer_period, as_json):
+    """Energy replenishment: work W, duty cycle and efficiency E the strategy cannot exceed."""
+    from .energy_replenishment import bounds as energy
+    rates = energy.Rates(capacity=capacity, charge=charge_rate, move=move_rate, work=work_rate, core=core_rate,
+                         commute_m=commute_m, speed_ms=speed, workers=workers, duration_s=duration)
+    try:
+        mobile = energy.MobileRates(capacity=charger_capacity, charge=charge_rate, move=move_rate, core=core_rate,
+                                    transfer=transfer_rate, loss=transfer_loss)
+        found = (energy.mobile_bound(rates, mobile, transfer_period) if strategy == "mobile" and transfer_period
+                 else energy.strategy_bound(strategy, rates, mobile))
+        if found is None or not getattr(found, "feasible", True):
+            raise ValueError("no feasible transfer period: a charger cannot sustain a worker with these rates")
+        result = dict(dataclasses.asdict(found), constant_supply_work=energy.constant_supply_bound(rates).work)
+    except ValueError as exc:
+        terminal.fail("bounds energy: %s" % exc)
+    if as_json:
+        terminal.line(json.dumps(result, sort_keys=True))
+        return
+    for key, value in result.items():
+        terminal.line("%-22s %s" % (key, round(value, 4) if isinstance(value, float) else value))

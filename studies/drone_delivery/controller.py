@@ -15,23 +15,18 @@ from functools import lru_cache
 from pathlib import Path
 from types import ModuleType
 
-from swarmvm.pipeline import compile_inputs
-from swarmvm.output import write_outputs
-from swarmvm.runtime import python_vm
-from swarmvm.targets import generate
+from swarmvm import api
 
 SUPERVISOR = Path(__file__).with_name("uav.yaml")
-LEARNED_PAIR = dict(yes="capableTask", no="notCapableTask")
+LEARNED_CHECK = "capableTask/notCapableTask"
 
 
 @lru_cache(maxsize=None)
 def generated_app() -> ModuleType:
     """The generated ``uav_app`` module (``make_vm``; it imports uav_controller, uav_learned and
-    uav_tables)."""
-    python_vm()                                     # the runtime the generated code imports
+    uav_tables, and the copy of the Python runtime generated beside them)."""
     outdir = tempfile.mkdtemp(prefix="swarmvm-uav-")
-    compiled = compile_inputs([str(SUPERVISOR)], name="uav")
-    write_outputs(outdir, generate(compiled, "python", learned_checks=[LEARNED_PAIR]))
+    api.generate_target([str(SUPERVISOR)], "python", outdir, name="uav", learned=[LEARNED_CHECK])
     sys.path.insert(0, outdir)
     try:
         return importlib.import_module("uav_app")     # imports its siblings too

@@ -1,40 +1,122 @@
-"""The C and C++ runtimes' image-format constants equal the one definition (swarmvm_format.py).
+"""The C and C++ runtimes' format constants equal the one definition, as their compilers see them.
 
-A microcontroller cannot import the Python definition, so swarmvm.h and swarmvm.hpp keep their
-own copies; this test reads them from the sources and compares every one: version, magic,
-header size and every field's offset, flag bits, size limits and the result codes."""
+A microcontroller cannot import runtime_py/swarmvm_format.py, so swarmvm.h (with
+swarmvm_stream.h) and swarmvm.hpp keep their own copies. Rather than reading those copies with
+regular expressions (which miss a value spelled another way, an ``#if`` around it or a second
+definition), each test here compiles a small program that includes the header and prints every
+constant as the compiler evaluated it, then compares the printout with the Python definition:
+version, magic, header size and each field's offset, flags, limits, result codes, stream chunk
+sizes, the Q15 one, the seeds and the violation counter's stop. The two numbers swarmvm.c keeps
+to itself (Q15 one and the seed that replaces 0) are read from what the VM does with them."""
 
-import re
+import subprocess
 
-from swarmvm.runtime import RUNTIME_C, RUNTIME_CPP, image_format
+from checkout import EXAMPLE
+from swarmvm import naming
+from swarmvm.pipeline import compile_inputs
+from swarmvm.runtime import RUNTIME_C, RUNTIME_CPP, image_format, python_vm
 
 F = image_format()
-C_HEADER = (RUNTIME_C / "swarmvm.h").read_text()
-CPP_HEADER = (RUNTIME_CPP / "swarmvm.hpp").read_text()
+VM = python_vm()
+WARNINGS = ["-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
-def _c_defines():
-    return {name: int(value, 0) for name, value in
-            re.findall(r"^#define SVM_(\w+) (0x[0-9A-Fa-f]+|\d+)U?L?\b", C_HEADER, re.M | re.I)}
-
-
-def _cpp_constants():
-    return {name: int(value, 0) for name, value in
-            re.findall(r"^constexpr std::\w+ k(\w+) = (0x[0-9A-Fa-f]+|\d+)u?;", CPP_HEADER, re.M)}
-
-
-def _camel(snake):
-    return "".join(part.capitalize() for part in snake.split("_"))
-
-
-def _expected():
-    """{NAME: value} in the C spelling (SVM_ prefix dropped)."""
+def _image_constants():
+    """{NAME: value}, C's spelling without SVM_: what both headers define about the image."""
     values = {"FORMAT_VERSION": F.FORMAT_VERSION, "MAGIC": int.from_bytes(F.MAGIC, "little"),
               "HEADER_SIZE": F.HEADER_SIZE, "CRC_SIZE": F.CRC_SIZE, "MIN_IMAGE_SIZE": F.MIN_IMAGE_SIZE,
               "FLAG_NAMES": F.FLAG_NAMES, "FLAG_PROBS": F.FLAG_PROBS, "FLAG_ORDER": F.FLAG_ORDER,
-              "KNOWN_FLAGS": F.KNOWN_FLAGS}
+              "FLAG_SOURCE": F.FLAG_SOURCE, "KNOWN_FLAGS": F.KNOWN_FLAGS}
     values.update({"AT_" + field.upper(): offset for field, offset in F.OFFSETS.items()})
     return values
+
+
+def c_expected():
+    """{C expression: value} of everything swarmvm.h and swarmvm_stream.h define about the format."""
+    values = {"SVM_" + name: value for name, value in _image_constants().items()}
+    values.update({"SVM_FORMAT_MAX_EVENTS": F.MAX_EVENTS, "SVM_FORMAT_MAX_SUPERVISORS": F.MAX_SUPERVISORS,
+                   "SVM_FORMAT_MAX_STATES": F.MAX_STATES, "SVM_MAX_VIOLATIONS": VM.MAX_VIOLATIONS,
+                   "SVM_DEFAULT_SEED": VM.XorShift32().state, "SVM_CRC16_INIT": F.crc16(b""),
+                   "SVM_CHUNK_DATA": F.STREAM_CHUNK_DATA, "SVM_CHUNK_BYTES": 1 + F.STREAM_CHUNK_DATA})
+    values.update({"SVM_OK" if code == 0 else "SVM_ERR_" + code.name: int(code) for code in F.ErrorCode})
+    # swarmvm.c's own: every event weighs one in an image without probabilities, and seed 0
+    # starts the generator from the replacing seed (its first draw is compared).
+    values["svm_weight(&vm, 0)"] = F.Q15_ONE
+    values["first_draw_of_seed_0(&vm)"] = VM.XorShift32(0).next()
+    return values
+
+
+def cpp_expected():
+    """{C++ expression: value} of everything swarmvm.hpp defines about the format."""
+    values = {"swarmvm::k" + "".join(part.capitalize() for part in name.lower().split("_")): value
+              for name, value in _image_constants().items()}
+    values.update({"swarmvm::kMaxImageSize": F.MAX_IMAGE_SIZE, "swarmvm::kQ15One": F.Q15_ONE,
+                   "swarmvm::kZeroSeed": VM.XorShift32(0).state, "swarmvm::kMaxViolations": VM.MAX_VIOLATIONS})
+    # The C++ reader raises the image codes (LENGTH .. LAYOUT); it has no build limits or C API.
+    values.update({"swarmvm::ErrorCode::" + code.name.lower(): int(code) for code in F.ErrorCode
+                   if F.ErrorCode.LENGTH <= code <= F.ErrorCode.LAYOUT})
+    return values
+
+
+def _printer(expressions, cast):
+    """C/C++ statements printing each expression as ``expression value``, one a line."""
+    return "".join('    printf("%%s %%llu\\n", "%s", (unsigned long long)%s(%s));\n' % (e, cast, e) for e in expressions)
+
+
+def _run(tmp_path, command, source, name):
+    program = tmp_path / name
+    (tmp_path / (name + source[0])).write_text(source[1])
+    subprocess.run([*command, str(tmp_path / (name + source[0])), "-o", str(program)], check=True)
+    lines = subprocess.run([str(program)], check=True, capture_output=True, text=True).stdout.splitlines()
+    return {expression: int(value) for expression, value in (line.rsplit(" ", 1) for line in lines)}
+
+
+def test_c_constants_as_compiled_equal_the_definition(tmp_path):
+    image = compile_inputs([str(EXAMPLE)]).image
+    assert not F.Image.parse(image).probs        # so that every weight is one
+    source = """#include <stdio.h>
+#include "swarmvm.h"
+#include "swarmvm_stream.h"
+
+static const uint8_t image[] = {%s};
+
+static uint32_t first_draw_of_seed_0(svm_vm_t *vm)
+{
+    svm_set_options(vm, 0, 0);
+    svm_reset(vm);
+    return svm_random(vm);
+}
+
+int main(void)
+{
+    static svm_vm_t vm;
+    svm_init(&vm);
+    if (svm_load(&vm, image, sizeof image) != SVM_OK) {
+        return 1;
+    }
+%s    return 0;
+}
+""" % (", ".join(map(str, image)), _printer(c_expected(), ""))
+    command = ["gcc", "-std=c99", *WARNINGS, "-I", str(RUNTIME_C), str(RUNTIME_C / "swarmvm.c")]
+    assert _run(tmp_path, command, (".c", source), "c_constants") == c_expected()
+
+
+def test_cpp_constants_as_compiled_equal_the_definition(tmp_path):
+    source = """#include <cstdio>
+#include "swarmvm.hpp"
+
+int main()
+{
+%s    return 0;
+}
+""" % _printer(cpp_expected(), "static_cast<unsigned long long>").replace("(unsigned long long)", "")
+    command = ["g++", "-std=c++17", *WARNINGS, "-I", str(RUNTIME_CPP)]
+    assert _run(tmp_path, command, (".cpp", source), "cpp_constants") == cpp_expected()
+
+
+def test_a_stream_chunk_is_one_kilobot_message():
+    """The chunk (sequence byte and image bytes) fills a kilolib message's payload exactly."""
+    assert 1 + F.STREAM_CHUNK_DATA == naming.KILOBOT_MESSAGE_BYTES
 
 
 def test_header_offsets_follow_the_documented_table():
@@ -42,29 +124,3 @@ def test_header_offsets_follow_the_documented_table():
                          "num_states": 8, "num_transitions": 10, "state_width": 12, "mask_bytes": 13,
                          "length": 14}
     assert F.HEADER_SIZE == 16 and F.MIN_IMAGE_SIZE == 18
-
-
-def test_c_constants_equal_the_definition():
-    defines = _c_defines()
-    assert {name: defines.get(name) for name in _expected()} == _expected()
-
-
-def test_cpp_constants_equal_the_definition():
-    constants = _cpp_constants()
-    expected = {_camel(name.lower()): value for name, value in _expected().items()}
-    expected["MaxImageSize"] = F.MAX_IMAGE_SIZE
-    assert {name: constants.get(name) for name in expected} == expected
-
-
-def test_c_result_codes_equal_the_definition():
-    body = re.search(r"enum svm_result \{(.*?)\};", C_HEADER, re.S).group(1)
-    codes = {name: int(value) for name, value in re.findall(r"SVM_(?:ERR_)?(\w+) = (\d+)", body)}
-    assert codes == {code.name: int(code) for code in F.ErrorCode}
-
-
-def test_cpp_image_error_codes_equal_the_definition():
-    """The C++ reader raises the image codes (LENGTH .. LAYOUT); it has no build limits or C API."""
-    body = re.search(r"enum class ErrorCode : int \{(.*?)\};", CPP_HEADER, re.S).group(1)
-    codes = {name.upper(): int(value) for name, value in re.findall(r"(\w+) = (\d+)", body)}
-    image_codes = [F.ErrorCode.LENGTH, F.ErrorCode.MAGIC, F.ErrorCode.VERSION, F.ErrorCode.CRC, F.ErrorCode.LAYOUT]
-    assert codes == {code.name: int(code) for code in image_codes}

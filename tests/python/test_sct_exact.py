@@ -375,7 +375,8 @@ def test_a_stale_or_missing_image_is_refused(vm, tmp_path, monkeypatch):
 
 def test_the_packed_image_is_deterministic_and_keeps_the_start(tmp_path):
     """`swarmvm pack` twice gives the same bytes; the image records sup_current_state."""
-    import swarmvm_format
+    from swarmvm.runtime import image_format
+    swarmvm_format = image_format()
     path = tmp_path / "supervisor.yaml"
     path.write_text(random_supervisor(4))
     _pack(path, tmp_path / "a.svm")
