@@ -1,0 +1,82 @@
+"""`make mutation`'s report (scripts/mutation_report.py): counts per module, equivalents set aside
+by their entry in the equivalents file, the kill rate over the rest, exit status 1 under the
+threshold; and the runner's reading of cosmic-ray's dump (scripts/mutation.py)."""
+
+import json
+import sys
+
+import pytest
+
+from checkout import ROOT
+
+sys.path.insert(0, str(ROOT / "scripts"))
+import mutation  # noqa: E402
+import mutation_report  # noqa: E402
+
+LINE = "if pos >= end:"
+
+
+def mutant(outcome, module="m.py", column=15, operator="core/ReplaceComparisonOperator_GtE_Gt"):
+    return {"module": module, "operator": operator, "line": 12, "column": column, "text": LINE,
+            "mutated": "if pos > end:", "outcome": outcome}
+
+
+EQUIVALENT = """[[equivalent]]
+module = "m.py"
+operator = "core/ReplaceComparisonOperator_GtE_Gt"
+line = "if pos >= end:"
+column = 15
+reason = "pos never passes end"
+"""
+
+
+def run_report(tmp_path, mutants, equivalents=""):
+    (tmp_path / "m.mutants.json").write_text(json.dumps(mutants))
+    (tmp_path / "equivalents.toml").write_text(equivalents)
+    status = mutation_report.main([str(tmp_path), "--equivalents", str(tmp_path / "equivalents.toml")])
+    return status, json.loads((tmp_path / "report.json").read_text())["modules"]
+
+
+def test_the_rate_counts_timeouts_as_kills_and_sets_equivalents_aside(tmp_path):
+    mutants = [mutant("killed", column=c) for c in range(30)] + [mutant("timeout", column=40), mutant("survived")]
+    status, modules = run_report(tmp_path, mutants, EQUIVALENT)
+    assert status == 0
+    assert modules == [{"module": "m.py", "killed": 30, "timeout": 1, "survived": 0, "incompetent": 0,
+                        "equivalent": 1, "rate": 100.0, "survivors": []}]
+
+
+def test_a_module_under_97_percent_fails_the_report_and_its_survivors_are_listed(tmp_path, capsys):
+    mutants = [mutant("killed", column=c) for c in range(32)] + [mutant("survived", column=99)]
+    status, modules = run_report(tmp_path, mutants, EQUIVALENT)
+    assert status == 1 and modules[0]["rate"] == pytest.approx(100 * 32 / 33, abs=0.01)
+    assert modules[0]["survivors"] == [{"line": 12, "column": 99, "operator": "core/ReplaceComparisonOperator_GtE_Gt",
+                                        "text": LINE, "mutated": "if pos > end:", "outcome": "survived"}]
+    report = (tmp_path / "report.md").read_text()
+    assert "| m.py | 33 | 32 | 0 | 1 | 0 | 0 | 97.0 % (under) |" in report
+    assert "- line 12, column 99, core/ReplaceComparisonOperator_GtE_Gt: `if pos >= end:` -> `if pos > end:`" in report
+    assert "UNDER" in capsys.readouterr().out
+
+
+def test_an_equivalent_without_a_reason_is_refused(tmp_path):
+    with pytest.raises(ValueError, match="without a reason"):
+        run_report(tmp_path, [mutant("survived")], EQUIVALENT.replace("pos never passes end", " "))
+
+
+def test_the_repository_equivalents_each_give_a_reason():
+    mutation_report.load_equivalents(ROOT / "tests" / "mutation" / "equivalents.toml")
+
+
+def test_the_runner_reads_cosmic_rays_dump():
+    """Skipped (filtered) items are left out; a timeout is told from another kill by its output."""
+    def line(operator, outcome, output="", worker="normal", row=2):
+        item = {"job_id": "j", "mutations": [{"module_path": "m.py", "operator_name": operator, "occurrence": 0,
+                                              "start_pos": [row, 4], "end_pos": [row, 6]}]}
+        result = {"worker_outcome": worker, "output": output, "test_outcome": outcome,
+                  "diff": "--- a\n+++ b\n@@ -2 +2 @@\n-    x = 1\n+    x = 2\n"}
+        return json.dumps([item, result])
+    dump = "\n".join([line("core/NumberReplacer", "killed"), line("core/NumberReplacer", "killed", "timeout"),
+                      line("core/AddNot", None, worker="skipped"), line("core/ReplaceTrueWithFalse", "survived")])
+    mutants = mutation.mutants_of("m.py", ["def f():", "    x = 1"], dump)
+    assert [(m["operator"], m["outcome"]) for m in mutants] == [
+        ("core/NumberReplacer", "killed"), ("core/NumberReplacer", "timeout"), ("core/ReplaceTrueWithFalse", "survived")]
+    assert {(m["text"], m["mutated"], m["line"], m["column"]) for m in mutants} == {("x = 1", "x = 2", 2, 4)}
