@@ -1,6 +1,11 @@
 """The baseline the speed benchmarks compare against: the runtimes as they were at commit
 BASELINE (main before the speed work of issue 13), taken from this checkout's git history into
-a scratch folder so that both versions run side by side in one benchmark run."""
+a scratch folder so that both versions run side by side in one benchmark run.
+
+It stays the old commit's code, not the reference VM (runtime_py/swarmvm_reference.py): issue
+13's targets are ratios to that commit's speed. The plain step of docs/semantics.md, to read
+and to compare traces with, is the reference; benchmarks/python_vm.py measures the VM against
+it too."""
 
 import importlib.util
 import subprocess

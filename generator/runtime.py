@@ -10,6 +10,7 @@ from functools import lru_cache
 from importlib import import_module, resources
 from importlib.abc import Traversable
 from types import ModuleType
+from typing import Dict
 
 TEMPLATES: Traversable = resources.files("swarmvm.templates")
 RUNTIME_C: Traversable = resources.files("swarmvm.runtime_c")
@@ -28,23 +29,32 @@ def image_format() -> ModuleType:
     return import_module("swarmvm.runtime_py.swarmvm_format")
 
 
+def _runtime_module(name: str, neighbours: Dict[str, ModuleType]) -> ModuleType:
+    """The package's runtime_py/``name``.py, imported with the top-level names a robot's copy
+    imports its neighbours by (``from swarmvm_format import ...``) bound to the package's own
+    modules for the import only; the previous entries (none, or another copy a program loaded)
+    come back after it. So the runtime and the compiler share one ``Image`` and ``ImageError``,
+    and loading it registers no top-level module: a generated Python target imported in the same
+    process still finds its own copy of the runtime."""
+    previous = {neighbour: sys.modules.get(neighbour) for neighbour in neighbours}
+    sys.modules.update(neighbours)
+    try:
+        return import_module("swarmvm.runtime_py." + name)
+    finally:
+        for neighbour, module in previous.items():
+            if module is None:
+                del sys.modules[neighbour]
+            else:
+                sys.modules[neighbour] = module
+
+
 @lru_cache(maxsize=None)
 def python_vm() -> ModuleType:
-    """The reference Python VM (runtime_py/swarmvm_vm.py), loaded on first use.
+    """The fast Python VM (runtime_py/swarmvm_vm.py), loaded on first use."""
+    return _runtime_module("swarmvm_vm", {"swarmvm_format": image_format()})
 
-    The file imports the format by the top-level name a robot's copy has beside it
-    (``from swarmvm_format import ...``); here that name is the package's format module for the
-    import only, and the previous entry (none, or another copy a program loaded) comes back
-    after it. So the VM and the compiler share one ``Image`` and ``ImageError``, and loading
-    the VM registers no top-level module: a generated Python target imported in the same
-    process still finds its own copy of the runtime."""
-    name = "swarmvm_format"
-    previous = sys.modules.get(name)
-    sys.modules[name] = image_format()
-    try:
-        return import_module("swarmvm.runtime_py.swarmvm_vm")
-    finally:
-        if previous is None:
-            del sys.modules[name]
-        else:
-            sys.modules[name] = previous
+
+@lru_cache(maxsize=None)
+def reference_vm() -> ModuleType:
+    """The plain reference VM (runtime_py/swarmvm_reference.py), the conformance oracle."""
+    return _runtime_module("swarmvm_reference", {"swarmvm_format": image_format(), "swarmvm_vm": python_vm()})

@@ -2,11 +2,12 @@
 
 Standard library only, so it can be copied onto a robot as it is, together with
 swarmvm_format.py (the image format and its reader, re-exported here: Image, ImageError,
-crc16, FORMAT_VERSION). It implements the execution semantics of docs/semantics.md exactly;
-the other runtimes (C, C++) are checked against this one trace for trace. The tables come from
-a table image (docs/image-format.md), either compiled into a generated module as a bytes
-literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so "compiled in" and
-"loaded" are one code path. For speed, a VM writes its step out for its bindings and options
+crc16, FORMAT_VERSION). It implements the execution semantics of docs/semantics.md exactly:
+like the other runtimes (C, C++), it is checked trace for trace against the plain reference VM
+(swarmvm_reference.py, written to be read beside that page; robots need not have it). The
+tables come from a table image (docs/image-format.md), either compiled into a generated module
+as a bytes literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so
+"compiled in" and "loaded" are one code path. For speed, a VM writes its step out for its bindings and options
 (VM._bound, _stepper) and compiles it once; docs/api.md says what else the step and the load
 do ahead of time, and what they gained.
 """
@@ -16,6 +17,7 @@ __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEve
 
 import functools
 import hashlib
+import linecache
 import operator
 import os
 import random
@@ -118,15 +120,26 @@ def _poll_lines(events, wrap):
             + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
 
 
-def _compiled(key, lines):
-    """The function ``make`` that the source ``lines`` define, compiled once per ``key`` (the
-    code depends on the events and options alone, not on the callbacks): _COMPILED."""
+def _compiled(key, parameters, lines):
+    """The function ``make(*parameters)`` whose body is the source ``lines``, compiled once per
+    ``key`` (the code depends on the events and options alone, not on the callbacks):
+    _COMPILED. The caller passes the parameters by name (``make(**parts)``), so the names are
+    written once, in its own code. The source is compiled under a file name of its own
+    (``<swarmvm canonical step ...>``, ``<swarmvm exact step ...>``: the kind, ``key[0]``, and
+    a digest of the text) whose lines ``linecache`` holds, so that a traceback through a
+    written-out step shows the lines it ran."""
     make = _COMPILED.get(key)
     if make is None:
+        source = "".join(line + "\n" for line in ["def make(%s):" % ", ".join(parameters)]
+                         + ["    " + line for line in lines])
+        filename = "<swarmvm %s step %s>" % (key[0], hashlib.sha256(source.encode()).hexdigest()[:12])
         namespace: dict = {}
-        exec("\n".join(lines) + "\n", namespace)
+        exec(compile(source, filename, "exec"), namespace)
         if len(_COMPILED) >= MAX_COMPILED:
+            for old in _COMPILED.values():
+                linecache.cache.pop(old.__code__.co_filename, None)
             _COMPILED.clear()
+        linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
         make = _COMPILED[key] = namespace["make"]
     return make
 
@@ -176,13 +189,14 @@ def _mask_line(gate_sups):
 
 def _gate_lines(gate_sups):
     """The lines of ``make`` that name each gate's masks ``g<i>`` for _mask_line."""
-    return ["    g%d = gates[%d][1]" % (i, i) for i in range(len(gate_sups))]
+    return ["g%d = gates[%d][1]" % (i, i) for i in range(len(gate_sups))]
 
 
 def _choice_lines(uniform, sole, gate_sups):
     """Source lines that fire one of the enabled controllable events: the uniform policy's draw
-    (XorShift32.below, inline) or the VM's ``select``, then the event's move, from the
-    remembered states after it (``afters``: one supervisor's state when ``sole``, else every
+    (XorShift32.next, the generator's one definition, called; its number scaled to an index as
+    XorShift32.below does, whose call would cost the step a second frame) or the VM's
+    ``select``, then the event's move, from the remembered states after it (``afters``: one supervisor's state when ``sole``, else every
     supervisor's, or None when not remembered), and its action."""
     if sole:
         body = ["entry = table[states[0]]",
@@ -195,16 +209,7 @@ def _choice_lines(uniform, sole, gate_sups):
     body += ["if enabled:"]
     if uniform:
         body += ["    n = len(enabled)",
-                 "    if n == 1:",
-                 "        k = 0",
-                 "    else:",
-                 "        rng = vm.rng",
-                 "        x = rng.state",
-                 "        x ^= (x << 13) & 0xFFFFFFFF",
-                 "        x ^= x >> 17",
-                 "        x ^= (x << 5) & 0xFFFFFFFF",
-                 "        rng.state = x",
-                 "        k = ((x >> 16) * n) >> 16"]
+                 "    k = 0 if n == 1 else ((vm.rng.next() >> 16) * n) >> 16"]
     else:
         body += ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"]
     body += ["    choice = enabled[k]"] if uniform else []
@@ -217,9 +222,9 @@ def _choice_lines(uniform, sole, gate_sups):
     return body + ["    fired.append(choice)"]
 
 
-def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups):
-    """The maker of a VM's step written out for its plan: the checks of ``events`` polled
-    (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
+def _stepper(parameters, events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups):
+    """The maker of a VM's step written out for its plan (``make`` takes ``parameters``, the
+    names of the parts of VM._bound's plan): the checks of ``events`` polled (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
     inputs, if-quiet control, uniform policy, strict, a controllable event to choose), the
     inputs moved without a check when none can violate (``total``), and, for an image of one
     supervisor (``sole``), its state read as one integer and the enabled events of each of
@@ -248,11 +253,9 @@ def _stepper(events, edge, quiet, uniform, strict, chooses, total, sole, gate_su
     if chooses:
         body += _choice_lines(uniform, sole, gate_sups)
     body += ["return fired"]
-    key = ("step", events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups)
-    return _compiled(key, ["def make(plan, acts, checks, datas, successors, columns, table, controllable, gates, sets,"
-                           " event_name, CallbackError, loads):"]
-                     + _gate_lines(gate_sups) + ["    def step(vm%s):" % _check_args(len(events))]
-                     + ["        " + line for line in body] + ["    return step"])
+    key = ("canonical", parameters, events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups)
+    return _compiled(key, parameters, _gate_lines(gate_sups) + ["def step(vm%s):" % _check_args(len(events))]
+                     + ["    " + line for line in body] + ["return step"])
 
 
 def _exact_inputs_lines(sole, total, public_first, acting):
@@ -348,9 +351,10 @@ def _exact_choice_lines(sole, gate_sups):
                     "sct.last_events = fired[:]"]
 
 
-def _exact_stepper(events, public_first, chooses, total, sole, acting, gate_sups):
-    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper), in
-    the file's event indices throughout, so nothing is mapped to file order per step: the
+def _exact_stepper(parameters, events, public_first, chooses, total, sole, acting, gate_sups):
+    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper; ``make``
+    takes ``parameters``, the names of SCT._plan_exact's parts), in the file's event indices
+    throughout, so nothing is mapped to file order per step: the
     checks of file events ``events`` polled in file order (raising as in the published VM), the
     true ones applied (_exact_inputs_lines), then, when there are controllable events, the
     published choice (_exact_choice_lines). ``sole``: one supervisor, whose state the step keeps
@@ -364,11 +368,104 @@ def _exact_stepper(events, public_first, chooses, total, sole, acting, gate_sups
     body += ["a = acts", "states = vm.states"] + (["s = states[0]"] if sole else [])
     body += _exact_inputs_lines(sole, total, public_first, acting)
     body += _exact_choice_lines(sole, gate_sups) if chooses else ["sct.last_events = fired[:]"]
-    return _compiled(("exact", events, public_first, chooses, total, sole, acting, gate_sups),
-                     ["def make(vm_plan, acts, checks, datas, canonical, successors, file_successors, columns, table,"
-                      " controllable, gates, private, orders, rnd, randint, getrandbits, loads):"]
-                     + _gate_lines(gate_sups) + ["    def run_step(sct%s):" % _check_args(len(events))]
-                     + ["        " + line for line in body] + ["    return run_step"])
+    return _compiled(("exact", parameters, events, public_first, chooses, total, sole, acting, gate_sups), parameters,
+                     _gate_lines(gate_sups) + ["def run_step(sct%s):" % _check_args(len(events))]
+                     + ["    " + line for line in body] + ["return run_step"])
+
+
+def check_options(inputs, control, policy, learner):
+    """ValueError unless the run options are among those of docs/semantics.md ("Options
+    summary"), and policy ``learned`` has its learner: the options of every Python VM."""
+    if inputs not in INPUT_MODES:
+        raise ValueError("inputs must be one of %s" % (INPUT_MODES,))
+    if control not in CONTROL_MODES:
+        raise ValueError("control must be one of %s" % (CONTROL_MODES,))
+    if policy not in POLICIES:
+        raise ValueError("policy must be one of %s" % (POLICIES,))
+    if policy == "learned" and learner is None:
+        raise ValueError("policy 'learned' needs a learner")
+
+
+class Bindings:
+    """The callbacks of a VM and the rules that bind them (docs/semantics.md, "Callbacks"):
+    ``actions``, ``checks`` and ``data`` by event index, over ``image``. The VM and the
+    reference VM (swarmvm_reference.py) bind alike by being both of this class; each says what
+    a change of binding means to its step (``_replan``)."""
+
+    image: Image
+    num_events: int
+    strict: bool
+    input_order: list
+    actions: dict
+    checks: dict
+    data: dict
+    _bindings_checked: bool
+
+    def _replan(self):
+        """Called after every bind: what the step prepared for the bindings is stale."""
+
+    def _index(self, event):
+        if isinstance(event, int):
+            if not 0 <= event < self.num_events:
+                raise KeyError("event index %d out of range (0..%d)" % (event, self.num_events - 1))
+            return event
+        return self.image.event_index(event)
+
+    def bind(self, event, action=None, check=None, data=None):
+        """Bind an action and/or a check to an event given by name (``EV_x`` or ``x``) or index.
+
+        A name the supervisor does not have is an error (KeyError), never event 0."""
+        index = self._index(event)
+        if check is not None and self.image.controllable >> index & 1:
+            raise ValueError("%s is controllable: it takes an action, not a check" % self.image.event_name(index))
+        if action is not None:
+            self.actions[index] = action
+        if check is not None:
+            self.checks[index] = check
+        self.data[index] = data
+        self._bindings_checked = False
+        self._replan()
+
+    def bind_controller(self, controller):
+        """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
+        (:func:`callback_stem`: ``check_received_x`` for the message event ``EV__x``)."""
+        for e in range(self.num_events):
+            stem = callback_stem(self.image.event_name(e)[3:])
+            action = getattr(controller, "on_" + stem, None)
+            check = getattr(controller, "check_" + stem, None)
+            if not self.image.controllable >> e & 1 or check is None:
+                self.bind(e, action=action, check=check)
+            else:
+                self.bind(e, action=action)
+
+    def unbound_checks(self):
+        """Names of uncontrollable events with no check (they can never occur)."""
+        return [self.image.event_name(e) for e in self.input_order if e not in self.checks]
+
+    def _check_bindings(self):
+        """Strict mode, before a step: every uncontrollable event has a check."""
+        if self.unbound_checks():
+            raise UnboundEvents(self.unbound_checks())
+        self._bindings_checked = True
+
+    def _rebind(self, new):
+        """The callbacks moved to image ``new`` by name, for a load (``load`` of each VM);
+        KeyError for a name ``new`` lacks, or UnboundEvents in strict mode when a check is
+        missing, before anything changes. Returns the uncontrollable events of ``new`` left
+        without a check."""
+        old_names = {e: self.image.event_name(e) for e in set(self.actions) | set(self.checks)}
+        if old_names and new.names is None and self.image.names is not None:
+            raise KeyError("the new image carries no event names to rebind callbacks by")
+        mapping = {e: new.event_index(name) for e, name in old_names.items()} if self.image.names else {}
+        checks = {mapping.get(e, e): f for e, f in self.checks.items()}
+        everything = (1 << new.num_events) - 1
+        missing = [new.event_name(e) for e in _bits(everything & ~new.controllable) if e not in checks]
+        if self.strict and missing:
+            raise UnboundEvents(missing)
+        self.actions = {mapping.get(e, e): f for e, f in self.actions.items()}
+        self.checks = checks
+        self.data = {mapping.get(e, e): d for e, d in self.data.items()}
+        return missing
 
 
 class _Option:
@@ -386,7 +483,7 @@ class _Option:
         vm._replan()
 
 
-class VM:
+class VM(Bindings):
     """The virtual machine: current states, inputs, generator, callbacks; ``step()`` evolves it.
 
     Options (docs/semantics.md): ``inputs`` level|edge, ``control`` after-inputs|if-quiet,
@@ -400,14 +497,7 @@ class VM:
 
     def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
                  priority=None, learner=None, on_violation=None, strict=False):
-        if inputs not in INPUT_MODES:
-            raise ValueError("inputs must be one of %s" % (INPUT_MODES,))
-        if control not in CONTROL_MODES:
-            raise ValueError("control must be one of %s" % (CONTROL_MODES,))
-        if policy not in POLICIES:
-            raise ValueError("policy must be one of %s" % (POLICIES,))
-        if policy == "learned" and learner is None:
-            raise ValueError("policy 'learned' needs a learner")
+        check_options(inputs, control, policy, learner)
         self._inputs, self._control, self._policy, self._strict = inputs, control, policy, strict
         self.seed, self.learner, self.on_violation = seed, learner, on_violation
         self._priority = priority
@@ -501,61 +591,11 @@ class VM:
         if self._in_hook:
             raise RuntimeError("on_violation cannot load an image: load it after step() returns")
         new = image if isinstance(image, Image) else Image.parse(image)
-        old_names = {e: self.image.event_name(e) for e in set(self.actions) | set(self.checks)}
-        if old_names and new.names is None and self.image.names is not None:
-            raise KeyError("the new image carries no event names to rebind callbacks by")
-        mapping = {e: new.event_index(name) for e, name in old_names.items()} if self.image.names else {}
-        checks = {mapping.get(e, e): f for e, f in self.checks.items()}
-        everything = (1 << new.num_events) - 1
-        missing = [new.event_name(e) for e in _bits(everything & ~new.controllable) if e not in checks]
-        if self.strict and missing:
-            raise UnboundEvents(missing)
-        self.actions = {mapping.get(e, e): f for e, f in self.actions.items()}
-        self.checks = checks
-        self.data = {mapping.get(e, e): d for e, d in self.data.items()}
+        missing = self._rebind(new)
         self._loads += 1
         self._install(new)
         self.reset()
         return missing
-
-    # -- callbacks ----------------------------------------------------------------------------
-    def _index(self, event):
-        if isinstance(event, int):
-            if not 0 <= event < self.num_events:
-                raise KeyError("event index %d out of range (0..%d)" % (event, self.num_events - 1))
-            return event
-        return self.image.event_index(event)
-
-    def bind(self, event, action=None, check=None, data=None):
-        """Bind an action and/or a check to an event given by name (``EV_x`` or ``x``) or index.
-
-        A name the supervisor does not have is an error (KeyError), never event 0."""
-        index = self._index(event)
-        if check is not None and self.image.controllable >> index & 1:
-            raise ValueError("%s is controllable: it takes an action, not a check" % self.image.event_name(index))
-        if action is not None:
-            self.actions[index] = action
-        if check is not None:
-            self.checks[index] = check
-        self.data[index] = data
-        self._bindings_checked = False
-        self._replan()
-
-    def bind_controller(self, controller):
-        """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
-        (:func:`callback_stem`: ``check_received_x`` for the message event ``EV__x``)."""
-        for e in range(self.num_events):
-            stem = callback_stem(self.image.event_name(e)[3:])
-            action = getattr(controller, "on_" + stem, None)
-            check = getattr(controller, "check_" + stem, None)
-            if not self.image.controllable >> e & 1 or check is None:
-                self.bind(e, action=action, check=check)
-            else:
-                self.bind(e, action=action)
-
-    def unbound_checks(self):
-        """Names of uncontrollable events with no check (they can never occur)."""
-        return [self.image.event_name(e) for e in self.input_order if e not in self.checks]
 
     # -- running ------------------------------------------------------------------------------
     def reset(self):
@@ -619,25 +659,20 @@ class VM:
             plan = self._plan = (acts, chooses)
             sole = self._sole is not None
             columns = [pairs[0][1] if pairs else None for pairs in self.successors] if sole else None
-            make = _stepper(tuple(e for e, _, _ in polls), self.inputs == "edge", self.control == "if-quiet",
-                            self.policy == "uniform", bool(self.strict), chooses, self._total is not None, sole,
-                            tuple(sup for sup, _ in self._gates))
-            step = make(plan, acts, [c for _, c, _ in polls], [d for _, _, d in polls], self.successors, columns,
-                        self._sole, self.image.controllable, self._gates, self._enabled_sets, self.image.event_name,
-                        CallbackError, self._loads)
-            self.__dict__["step"] = types.MethodType(step, self)
+            parts = dict(plan=plan, acts=acts, checks=[c for _, c, _ in polls], datas=[d for _, _, d in polls],
+                         successors=self.successors, columns=columns, table=self._sole,
+                         controllable=self.image.controllable, gates=self._gates, sets=self._enabled_sets,
+                         event_name=self.image.event_name, CallbackError=CallbackError, loads=self._loads)
+            make = _stepper(tuple(parts), tuple(e for e, _, _ in polls), self.inputs == "edge",
+                            self.control == "if-quiet", self.policy == "uniform", bool(self.strict), chooses,
+                            self._total is not None, sole, tuple(sup for sup, _ in self._gates))
+            self.__dict__["step"] = types.MethodType(make(**parts), self)
         return plan
 
     def _replan(self):
         """Drop the plan and the step written out for it."""
         self._plan = None
         self.__dict__.pop("step", None)
-
-    def _check_bindings(self):
-        """Strict mode, before a step: every uncontrollable event has a check."""
-        if self.unbound_checks():
-            raise UnboundEvents(self.unbound_checks())
-        self._bindings_checked = True
 
     def _fire(self, events, acts):
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
@@ -857,13 +892,14 @@ class SCT:
             self._file_successors = [vm.successors[c] for c in canonical]
         gate_sups = () if sole else tuple(sup for sup, _ in vm._gates)
         acting = any(vm_plan[0][canonical[event]] is not None for event, _, _ in polls)
-        make = _exact_stepper(tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
+        parts = dict(vm_plan=vm_plan, acts=vm_plan[0], checks=[c for _, c, _ in polls], datas=[d for _, _, d in polls],
+                     canonical=canonical, successors=vm.successors, file_successors=self._file_successors,
+                     columns=self._sole_columns, table=self._sole_table, controllable=vm.image.controllable,
+                     gates=vm._gates, private=self._private, orders=self._orders, rnd=random, randint=_RANDINT,
+                     getrandbits=random.getrandbits, loads=vm._loads)
+        make = _exact_stepper(tuple(parts), tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
                               vm._total is not None, sole, acting, gate_sups)
-        step = make(vm_plan, vm_plan[0], [c for _, c, _ in polls], [d for _, _, d in polls], canonical,
-                    vm.successors, self._file_successors, self._sole_columns, self._sole_table,
-                    vm.image.controllable, vm._gates, self._private, self._orders, random, _RANDINT,
-                    random.getrandbits, vm._loads)
-        self.__dict__["run_step"] = types.MethodType(step, self)
+        self.__dict__["run_step"] = types.MethodType(make(**parts), self)
 
     def _column(self, event):
         """A one-supervisor image's state after each of its states on canonical ``event``: its

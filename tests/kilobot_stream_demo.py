@@ -31,7 +31,7 @@ from swarmvm.image import chunks  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.output import write_outputs  # noqa: E402
 from swarmvm.naming import callback_stem  # noqa: E402
-from swarmvm.runtime import python_vm  # noqa: E402
+from swarmvm.runtime import python_vm, reference_vm  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
@@ -227,11 +227,10 @@ class Program:
 
 
 def reference(compiled_a, image, first_tick, steps, received=()):
-    """Trace lines of ``image`` run from reset by the Python VM, step j at kilo_ticks
+    """Trace lines of ``image`` run from reset by the reference VM, step j at kilo_ticks
     first_tick + j, its checks answered as the test controller does (events by name); a
     public event's check is true once, at the tick of each (tick, "EV_x") in ``received``."""
-    vm_module = python_vm()
-    vm = vm_module.VM(vm_module.Image.parse(image))
+    vm = reference_vm().ReferenceVM(image)
     model = compiled_a.model
     own = {n: k for k, n in enumerate(model.events)}
     inputs = [e for e in range(vm.image.num_events)
@@ -240,7 +239,7 @@ def reference(compiled_a, image, first_tick, steps, received=()):
     for tick, name in received:
         if 0 <= tick - first_tick < steps:
             rows[tick - first_tick].add(vm.image.event_index(name))
-    return vm_module.replay(vm, rows)
+    return python_vm().replay(vm, rows)
 
 
 def split(lines):

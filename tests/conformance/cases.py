@@ -1,7 +1,9 @@
 """Conformance cases shared by every runtime's suite (docs/conformance.md).
 
 A case is one supervisor image, one event script and one run configuration; the reference
-trace is what the Python VM prints. A runtime's suite runs the same cases and compares. Runs
+trace is what the plain reference VM (runtime_py/swarmvm_reference.py, written beside
+docs/semantics.md) prints. Every runtime's suite, the fast Python VM's included, runs the same
+cases and compares. Runs
 are grouped per supervisor (``batches``) so that an embedded harness builds one firmware per
 supervisor and runs every script / option / seed combination in it."""
 
@@ -11,7 +13,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import python_vm
+from swarmvm.runtime import python_vm, reference_vm
 from swarmvm.script import random_script
 
 CORPUS = Path(__file__).resolve().parent.parent / "corpus"
@@ -57,11 +59,19 @@ def batches():
     return [batch(p) for p in SUPERVISORS]
 
 
+@lru_cache(maxsize=None)
 def reference(b, run):
-    """The Python VM's trace lines for one run of a batch."""
-    vm = python_vm()
-    machine = vm.VM(b.image, inputs=run.inputs, control=run.control, policy=run.policy, seed=run.seed)
-    return vm.replay(machine, b.scripts[run.script])
+    """The reference VM's trace lines for one run of a batch (the oracle of every runtime)."""
+    return list(_reference_lines(b, run))
+
+
+@lru_cache(maxsize=None)
+def _reference_lines(b, run):
+    """reference's lines, computed once per case: the plain VM is several times slower than the
+    fast one, and the C, C++ and Python suites each compare several builds with them."""
+    machine = reference_vm().ReferenceVM(b.image, inputs=run.inputs, control=run.control, policy=run.policy,
+                                         seed=run.seed)
+    return tuple(python_vm().replay(machine, b.scripts[run.script]))
 
 
 def _blocks(per_supervisor):
