@@ -1763,7 +1763,8 @@ private:
 // The checks' values gather as bits (bit i: the i-th uncontrollable event in file order), without
 // a branch on them. When no event of the step has an action and none is left pending, one
 // table entry per automaton gives its state after all of them, applied in the published order
-// (`after_`, built when small); otherwise they go through the published input buffers.
+// (`after_`, or `landings_` for one automaton, built when small); otherwise they go through the
+// published input buffers.
 class PublishedStep {
 public:
     PublishedStep() = default;
@@ -1788,39 +1789,42 @@ public:
     void set_registration(unsigned event, const Registration& r) {
         registrations_[event] = r;
         acting_ = Mask();
+        input_registrations_.clear();
         for (std::size_t i = 0; i < inputs_.size(); ++i) {
             acting_.set_if(static_cast<unsigned>(i), registrations_[inputs_[i]].act != nullptr);
+            input_registrations_.push_back(registrations_[inputs_[i]]);
         }
     }
 
     // One published step: every registered check of an uncontrollable event in file order, the
     // events whose check was true applied in that order (public ones first for SCTPub), then the
     // k-th enabled controllable event, k = rng.next() % n, applied. Inlined here, the step of one
-    // automaton with after_ (most models, their product small): a table entry for the inputs, the
-    // state's list of enabled events for the choice; the others' step is run_automata.
+    // automaton with landings_ (most models, their product small): one table entry for the inputs
+    // and the state's enabled events, one load for the chosen event's successor; the others' step
+    // is run_automata.
     template <class Rng>
     void run(Rng& rng) {
-        if (choices_.empty()) {
+        if (landings_.empty()) {
             run_automata(rng);
             return;
         }
         const BasicMask<1> occurred = poll<BasicMask<1>>();
-        unsigned state;
+        std::size_t at;
         if ((occurred.word(0) & acting_.word(0)) == 0 && !backlog_) {
-            state = after_[(std::size_t{state_[0]} << inputs_.size()) | occurred.word(0)];
+            at = (std::size_t{state_[0]} << inputs_.size()) | occurred.word(0);
         } else {
             apply_buffered(occurred);
-            state = state_[0];
+            at = std::size_t{state_[0]} << inputs_.size();   // no input: the state itself
         }
-        const Choice choice = choices_[state];
-        if (choice.count != 0) {
-            const std::uint32_t k = rng.next();   // drawn even when one is enabled, as published
-            const unsigned event = choice_events_[choice.first + (choice.count == 1 ? 0u : k % choice.count)];
-            state_[0] = successors_[std::size_t{state} * events_ + event];
-            act(event);
-        } else {
-            state_[0] = static_cast<std::uint16_t>(state);
+        const Landing landing = landings_[at];
+        if (landing.count == 0) {
+            state_[0] = landing.state;
+            return;
         }
+        const std::uint32_t k = rng.next();   // drawn even when one is enabled, as published
+        const std::uint32_t chosen = landing.first + (landing.count == 1 ? 0u : k % landing.count);
+        state_[0] = choice_successors_[chosen];
+        act(choice_events_[chosen]);
     }
 
     // "sup:[4,1,3]": every supervisor's state as the file numbers it, from 1.
@@ -1839,10 +1843,15 @@ private:
         std::size_t start = 0;
         Mask alphabet;
     };
-    // A state's enabled controllable events: choice_events_[first .. first + count), in file order.
-    struct Choice {
+    // Where a step's inputs lead from a state: the state they reach and its enabled controllable
+    // events, choice_events_[first .. first + count) in file order, with the state each leads to
+    // in choice_successors_. The next state is then at most two dependent loads from the last
+    // (state -> landing -> successor), the chain every step waits on; 8 bytes an entry, so at
+    // most 512 KiB (kAfterCells entries) per SCT.
+    struct Landing {
         std::uint32_t first;
-        std::uint32_t count;
+        std::uint16_t count;
+        std::uint16_t state;
     };
 
     // At most this many uncontrollable events, and this many entries in all, for after_.
@@ -1938,7 +1947,8 @@ private:
 
     // after_[after_first_[a] + (q << inputs | occurred)]: automaton a's state after the
     // uncontrollable events `occurred` (bits as poll() gathers them) from state q, in the
-    // published order. With one automaton, also its states' enabled controllable events.
+    // published order. With one automaton, landings_ in its place: the same entries, each with the
+    // enabled controllable events of the state it holds.
     void build_after() {
         const std::size_t n_inputs = inputs_.size();
         if (n_inputs > kAfterInputs) return;
@@ -1964,11 +1974,19 @@ private:
             }
         }
         if (state_.size() != 1) return;
+        std::vector<Landing> choices;   // per state
         for (std::size_t q = 0; q < allowed_.size(); ++q) {
             const Mask enabled = controllable_ & allowed_[q];
-            choices_.push_back(Choice{static_cast<std::uint32_t>(choice_events_.size()), enabled.count()});
-            enabled.for_each([&](unsigned f) { choice_events_.push_back(static_cast<std::uint8_t>(f)); });
+            choices.push_back(Landing{static_cast<std::uint32_t>(choice_events_.size()),
+                                      static_cast<std::uint16_t>(enabled.count()), static_cast<std::uint16_t>(q)});
+            enabled.for_each([&](unsigned f) {
+                choice_events_.push_back(static_cast<std::uint8_t>(f));
+                choice_successors_.push_back(successors_[q * events_ + f]);
+            });
         }
+        for (std::uint16_t state : after_) landings_.push_back(choices[state]);
+        after_ = {};   // run_automata, its only other reader, does not run with landings_
+        after_first_ = {};
     }
 
     std::size_t automaton_size(std::size_t a) const {
@@ -1981,8 +1999,8 @@ private:
     M poll() {
         M occurred;
         try {
-            for (std::size_t i = 0; i < inputs_.size(); ++i) {
-                const Registration& r = registrations_[inputs_[i]];
+            for (std::size_t i = 0; i < input_registrations_.size(); ++i) {
+                const Registration& r = input_registrations_[i];
                 if (r.check != nullptr) occurred.set_if(static_cast<unsigned>(i), r.check(r, r.data));
             }
         } catch (...) {
@@ -2004,7 +2022,7 @@ private:
         ahead.complement_in(occurred).for_each([&](unsigned i) { pending_.push_if(inputs_[i], true); });
     }
 
-    // The step of several automata (or of one too large for choices_).
+    // The step of several automata (or of one too large for landings_).
     template <class Rng>
     SWARMVM_NOINLINE void run_automata(Rng& rng) {
         if (inputs_.size() <= 64) {
@@ -2077,9 +2095,11 @@ private:
     std::vector<std::uint16_t> successors_;     // [global state * events_ + event]
     std::vector<unsigned> after_first_;         // per automaton, into after_ (empty: no after_)
     std::vector<std::uint16_t> after_;
-    std::vector<Choice> choices_;               // per state of the one automaton (empty: several, or no after_)
+    std::vector<Landing> landings_;             // one automaton: as after_ (empty: several, or no after_)
     std::vector<std::uint8_t> choice_events_;
+    std::vector<std::uint16_t> choice_successors_;
     std::vector<Registration> registrations_;   // per event
+    std::vector<Registration> input_registrations_;   // per bit of inputs_: its event's, in a row for poll()
     Pending pending_public_, pending_;
     bool backlog_ = false;                      // the buffers may hold events (a callback threw)
 };
