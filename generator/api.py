@@ -99,7 +99,8 @@ def check(paths: Sequence[str], target: str | None = None, name: str | None = No
     """Validate each file (supervisor or ``.svm`` image): its row, and the models' warnings.
     With ``target``, each supervisor must also pass that target's own rules (its code is
     rendered in memory, as ``gen`` would with ``name``, and nothing is written)."""
-    rows, warnings = [], []
+    rows: list[CheckRow] = []
+    warnings: list[str] = []
     for path in paths:
         file = Path(path).name
         if path.endswith(".svm"):

@@ -8,7 +8,7 @@ same one-line :class:`~swarmvm.errors.InputError`, whatever the format."""
 
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Dict, Hashable, List, Optional, Tuple
+from typing import Dict, Hashable, List, NoReturn, Optional, Tuple
 
 import defusedxml.ElementTree as SafeET
 from defusedxml import DefusedXmlException
@@ -17,6 +17,7 @@ from xml.etree.ElementTree import Element, ParseError
 from .errors import InputError, read_input
 from .load_supervisor import NAME, show_value
 from .model import LocalSupervisor, Transition
+from .runtime import image_format
 
 
 @dataclass
@@ -33,7 +34,7 @@ class AutomatonBuilder:
 
     ``key`` names the part of the file in error messages (an attribute or section name)."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str) -> None:
         self.path = path
         self._states: Dict[Hashable, int] = {}
         self._initial: Optional[Hashable] = None
@@ -43,10 +44,10 @@ class AutomatonBuilder:
         self._rows: List[List[Transition]] = []
         self.probabilistic = False
 
-    def fail(self, key: str, message: str, where: str = ""):
+    def fail(self, key: str, message: str, where: str = "") -> NoReturn:
         raise InputError(self.path, key, message, where)
 
-    def state(self, sid: Hashable, initial: bool, marked: Optional[bool] = None, key: str = "state"):
+    def state(self, sid: Hashable, initial: bool, marked: Optional[bool] = None, key: str = "state") -> None:
         if sid in self._states:
             self.fail(key, "duplicate state id", "state %s" % sid)
         self._states[sid] = len(self._states)
@@ -57,10 +58,11 @@ class AutomatonBuilder:
                 self.fail(key, "a second initial state", "state %s" % sid)
             self._initial = sid
 
-    def event(self, eid: Hashable, name: str, controllable: bool, public: bool = False, key: str = "event"):
+    def event(self, eid: Hashable, name: object, controllable: bool, public: bool = False, key: str = "event") -> None:
         if not isinstance(name, str) or not NAME.match(name):
-            self.fail(key, "%s is not an event name (at most 255 letters, digits and '_')"
-                      % (ascii(name[:60]) if isinstance(name, str) else show_value(name)), "event %s" % eid)
+            self.fail(key, "%s is not an event name (at most %d letters, digits and '_')"
+                      % (ascii(name[:60]) if isinstance(name, str) else show_value(name),
+                         image_format().MAX_NAME_LENGTH), "event %s" % eid)
         if name in self._flags:
             self.fail(key, "duplicate event name", "event EV_%s" % name)
         if eid in self._events:
@@ -69,7 +71,7 @@ class AutomatonBuilder:
         self._flags[name] = (controllable, public)
 
     def transition(self, source: Hashable, eid: Hashable, target: Hashable,
-                   probability: Optional[Fraction] = None, key: str = "transition"):
+                   probability: Optional[Fraction] = None, key: str = "transition") -> None:
         if eid not in self._events:
             self.fail(key, "event id %s is not declared" % (eid,), "state %s" % (source,))
         name = self._events[eid]

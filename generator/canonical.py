@@ -9,16 +9,17 @@ the order of the input."""
 
 from collections import deque
 
-from .model import CanonicalSupervisor, Model
+from .model import CanonicalSupervisor, Model, Supervisors
 
 SHOWN_STATES = 20    # unreachable states named in the warning; a range of thousands would be a line of 400 kB
 
 
-def canonicalise(spec):
+def canonicalise(spec: Supervisors) -> Model:
     """:class:`~swarmvm.model.Supervisors` -> :class:`~swarmvm.model.Model`."""
     events = tuple(sorted(spec.events))
     index = {name: i for i, name in enumerate(events)}
-    supervisors, warnings = [], list(spec.warnings)
+    supervisors: list[CanonicalSupervisor] = []
+    warnings = list(spec.warnings)
     for s, local in enumerate(spec.supervisors):
         rows = [sorted((index[t.event], t.target, t.probability) for t in row) for row in local.states]
         number = {local.initial: 0}

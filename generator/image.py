@@ -7,14 +7,19 @@ in the Python runtime's ``swarmvm_format`` (``FORMAT`` here); this module only e
 tables' sections."""
 
 import hashlib
+from collections.abc import Sequence
+from typing import Optional
 
 from . import runtime
 from .errors import InputError
+from .tables import Tables
 
 FORMAT = runtime.image_format()
 
 
-def pack(tables, source, names=True, order=None, source_section=None):
+def pack(tables: Tables, source: str, names: bool = True,
+         order: Optional[tuple[Sequence[int], Sequence[int]]] = None,
+         source_section: Optional[tuple[bytes, Sequence[int], Sequence[str]]] = None) -> bytes:
     """The image bytes; InputError when the model is too large for the format, or has no events
     (automata may declare none; the format needs one). ``order`` (each event's index in the
     source file, each global state's number in it) adds the order section; ``source_section``
@@ -31,10 +36,10 @@ def pack(tables, source, names=True, order=None, source_section=None):
             raise InputError(source, "", "%d %s, over the image format's limit of %d" % (count, what, limit))
     m = tables.mask_bytes
 
-    def mask(value):
+    def mask(value: int) -> bytes:
         return value.to_bytes(m, "little")
 
-    sections = {
+    sections: dict[str, bytes] = {
         "controllable": mask(tables.controllable),
         "public": mask(tables.public),
         "supervisors": b"".join(mask(tables.sup_alphabet[s]) + FORMAT.SUPERVISOR_RECORD.pack(
@@ -56,21 +61,23 @@ def pack(tables, source, names=True, order=None, source_section=None):
         sections["source"] = (digest + b"".join(s.to_bytes(2, "little") for s in start)
                               + b"".join(bytes([len(n)]) + n.encode("ascii") for n in written))
     try:
-        return FORMAT.assemble(tables.num_events, tables.num_supervisors, tables.num_states,
-                               tables.num_transitions, tables.state_width, sections)
+        image: bytes = FORMAT.assemble(tables.num_events, tables.num_supervisors, tables.num_states,
+                                       tables.num_transitions, tables.state_width, sections)
     except FORMAT.ImageError as exc:
         raise InputError(source, "", str(exc))
+    return image
 
 
-def digest(image):
+def digest(image: bytes) -> str:
     """Short content digest for banners: the first 16 hex digits of the image's SHA-256."""
     return hashlib.sha256(image).hexdigest()[:16]
 
 
-def chunks(image):
+def chunks(image: bytes) -> list[bytes]:
     """The image as stream chunks (runtime_c/swarmvm_stream.h): a sequence number, then the
     format's STREAM_CHUNK_DATA bytes of the image, the last chunk padded with zeros."""
-    size, most = FORMAT.STREAM_CHUNK_DATA, FORMAT.STREAM_MAX_CHUNKS
+    size: int = FORMAT.STREAM_CHUNK_DATA
+    most: int = FORMAT.STREAM_MAX_CHUNKS
     count = (len(image) + size - 1) // size
     if count > most:
         raise ValueError("an image of %d bytes needs %d chunks; a stream carries at most %d" % (len(image), count, most))

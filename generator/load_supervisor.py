@@ -6,10 +6,13 @@ typed by the key and position it appears at, and every defect is reported as one
 :class:`~swarmvm.errors.InputError` naming file, key and supervisor / state / event.
 """
 
+import builtins
 import hashlib
 import os
 import re
+from collections.abc import Hashable, Mapping, Sequence
 from fractions import Fraction
+from typing import NoReturn, Optional
 
 import yaml
 
@@ -44,16 +47,16 @@ class _NoAliasLoader(yaml.BaseLoader):
     never needs an alias, and nested aliases ("billion laughs") would make a small file expand
     to an enormous one; a second value for a key would otherwise silently replace the first."""
 
-    def compose_node(self, parent, index):
+    def compose_node(self, parent: Optional[yaml.Node], index: int) -> Optional[yaml.Node]:
         if self.check_event(yaml.AliasEvent):
             raise yaml.composer.ComposerError(None, None, "aliases (*name) are not accepted", self.peek_event().start_mark)
         return super().compose_node(parent, index)
 
-    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
+    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict[Hashable, object]:
         """The mapping, once no scalar key of it comes twice (every scalar is a string here, so
         ``a`` and ``"a"`` are the same key); DuplicateKey otherwise. A list or mapping as a key
         is PyYAML's own error (unhashable)."""
-        first_line: dict = {}
+        first_line: dict[str, int] = {}
         for key_node, _ in node.value:
             if isinstance(key_node, yaml.ScalarNode):
                 line = key_node.start_mark.line + 1
@@ -63,7 +66,7 @@ class _NoAliasLoader(yaml.BaseLoader):
         return super().construct_mapping(node, deep)
 
 
-def probability(text):
+def probability(text: object) -> Optional[Fraction]:
     """``text`` as an exact probability in [0, 1], else None. The form is checked first:
     ``Fraction`` takes '1e-100000000' (minutes of arithmetic) and '1/0' (ZeroDivisionError)."""
     if not isinstance(text, str) or not PROBABILITY.match(text.strip()):
@@ -75,12 +78,12 @@ def probability(text):
     return value if 0 <= value <= 1 else None
 
 
-def bare_name(raw):
+def bare_name(raw: str) -> str:
     """The event name without Nadzoru's ``EV_`` prefix."""
     return raw[3:] if raw.startswith("EV_") else raw
 
 
-def swarmvm_name(raw):
+def swarmvm_name(raw: str) -> str:
     """swarmvm's name for an event the published VMs accept (:data:`WRITTEN`): the bare name
     with each character other than a letter, digit or '_' made '_' (``EV_go-on`` is ``go_on``)."""
     return re.sub(r"[^A-Za-z0-9_]", "_", bare_name(raw))
@@ -89,16 +92,16 @@ def swarmvm_name(raw):
 class _Reader:
     """Typed access to the parsed document, raising InputError at the first defect."""
 
-    def __init__(self, path, doc):
+    def __init__(self, path: str, doc: dict[str, object]) -> None:
         self.path, self.doc = path, doc
 
-    def fail(self, key, message, where=""):
+    def fail(self, key: str, message: str, where: str = "") -> NoReturn:
         raise InputError(self.path, key, message, where)
 
-    def int(self, value, key, where="", low=0, high=None):
+    def int(self, value: object, key: str, where: str = "", low: int = 0, high: Optional[int] = None) -> int:
         if not isinstance(value, str) or not INTEGER.match(value):
             self.fail(key, "expected a non-negative integer, got %s" % show_value(value), where)
-        number = ascii_int(value.lstrip("0") or "0")
+        number: Optional[int] = ascii_int(value.lstrip("0") or "0")
         if number is None:
             self.fail(key, "value of %d digits out of range" % len(value), where)
         if number < low or (high is not None and number > high):
@@ -106,7 +109,8 @@ class _Reader:
             self.fail(key, "value %d out of range (must be %s)" % (number, bound), where)
         return number
 
-    def list(self, key, length=None, what=""):
+    # (``int`` and ``list`` name the methods above in the class body: the builtins are spelled out.)
+    def list(self, key: str, length: Optional[builtins.int] = None, what: str = "") -> builtins.list[object]:
         value = self.doc[key]
         if not isinstance(value, list):
             self.fail(key, "expected a list, got %s" % show_value(value))
@@ -114,7 +118,7 @@ class _Reader:
             self.fail(key, "has %d entries, %s says %d" % (len(value), what, length))
         return value
 
-    def flags(self, key, length, names):
+    def flags(self, key: str, length: builtins.int, names: Sequence[str]) -> builtins.list[bool]:
         values = self.list(key, length, "num_events")
         out = []
         for i, value in enumerate(values):
@@ -124,7 +128,7 @@ class _Reader:
         return out
 
 
-def show_value(value):
+def show_value(value: object) -> str:
     """A value for a one-line message: quoted and escaped when empty, holding white space or
     unprintable or non-ASCII characters; cut at 60 characters."""
     if isinstance(value, str):
@@ -134,7 +138,7 @@ def show_value(value):
     return "a list" if isinstance(value, list) else "a mapping" if isinstance(value, dict) else repr(value)
 
 
-def load_supervisor(path, published=False):
+def load_supervisor(path: str, published: bool = False) -> Supervisors:
     """Read ``path`` and return :class:`Supervisors`, or raise InputError. ``published``: take
     what the published VMs run (docs/compat.md): event names of any visible ASCII characters
     (named by :func:`swarmvm_name`), and a state's second transition on an event dropped with a
@@ -167,7 +171,7 @@ def load_supervisor(path, published=False):
     return spec
 
 
-def _parse(r, published=False):
+def _parse(r: _Reader, published: bool = False) -> Supervisors:
     doc = r.doc
     for key in REQUIRED:
         if key not in doc:
@@ -178,10 +182,10 @@ def _parse(r, published=False):
     n_events = r.int(doc["num_events"], "num_events", low=1, high=image.MAX_EVENTS)
     n_sups = r.int(doc["num_supervisors"], "num_supervisors", low=1, high=image.MAX_SUPERVISORS)
 
-    events: list = []
-    seen: dict = {}
-    written = r.list("events", n_events, "num_events")
-    for i, raw in enumerate(written):
+    events: list[str] = []
+    seen: dict[str, int] = {}
+    written: list[str] = []
+    for i, raw in enumerate(r.list("events", n_events, "num_events")):
         if published and isinstance(raw, str) and WRITTEN.match(raw):
             bare = swarmvm_name(raw)
         elif not isinstance(raw, str) or not NAME.match(bare_name(raw)):
@@ -193,6 +197,7 @@ def _parse(r, published=False):
             r.fail("events[%d]" % i, "duplicate event name (also events[%d])" % seen[bare], "event EV_%s" % bare)
         seen[bare] = i
         events.append(bare)
+        written.append(raw)
 
     controllable = r.flags("ev_controllable", n_events, events)
     public = [False] * n_events
@@ -204,7 +209,7 @@ def _parse(r, published=False):
                 r.fail("ev_public[%d]" % i, "disagrees with ev_shared[%d]" % i, "event EV_%s" % events[i])
             public = flags
 
-    alphabets = []
+    alphabets: list[frozenset[str]] = []
     rows = r.list("sup_events", n_sups, "num_supervisors")
     for s, row in enumerate(rows):
         if not isinstance(row, list) or len(row) != n_events:
@@ -221,7 +226,7 @@ def _parse(r, published=False):
     index = {name: i for i, name in enumerate(events)}
     # published: sup_data names an event as the events list writes it, or as swarmvm names it
     as_written = dict(zip(written, events)) if published else None
-    supervisors = []
+    supervisors: list[list[list[Transition]]] = []
     for s in range(n_sups):
         end = positions[s + 1] if s + 1 < n_sups else len(data)
         states = _parse_block(r, data, positions[s], end, s, index, alphabets[s], as_written, warnings)
@@ -246,10 +251,12 @@ def _parse(r, published=False):
         source=os.path.basename(r.path), events=events,
         controllable=dict(zip(events, controllable)), public=dict(zip(events, public)),
         supervisors=[LocalSupervisor(alphabets[s], initial[s], supervisors[s]) for s in range(n_sups)],
-        probabilistic=probabilistic, warnings=warnings, written=list(written), current=current)
+        probabilistic=probabilistic, warnings=warnings, written=written, current=current)
 
 
-def _parse_block(r, data, start, end, s, index, alphabet, as_written=None, warnings=None):
+def _parse_block(r: _Reader, data: Sequence[object], start: int, end: int, s: int, index: Mapping[str, int],
+                 alphabet: frozenset[str], as_written: Optional[Mapping[str, str]],
+                 warnings: list[str]) -> list[list[Transition]]:
     """One supervisor's states from ``sup_data[start:end]``: n, then n (event, hi, lo).
     ``as_written`` (published mode: the events' names as written -> swarmvm's): names are looked
     up in it first, and a second transition on an event from a state is dropped, with a
@@ -257,8 +264,8 @@ def _parse_block(r, data, start, end, s, index, alphabet, as_written=None, warni
     if not 0 <= start <= end <= len(data):
         r.fail("sup_data_pos[%d]" % s, "position %d does not start a block inside sup_data (%d entries)"
                % (start, len(data)), "supervisor %d" % s)
-    states: list = []
-    targets: list = []
+    states: list[list[Transition]] = []
+    targets: list[tuple[int, str, int]] = []
     pos = start
     while pos < end:
         q = len(states)
@@ -269,7 +276,8 @@ def _parse_block(r, data, start, end, s, index, alphabet, as_written=None, warni
                    "the block of supervisor %d does not end where %s" % (
                        s, "the next supervisor starts (sup_data[%d])" % end if end != len(data) else "sup_data ends"),
                    where)
-        transitions, seen = [], set()
+        transitions: list[Transition] = []
+        seen: set[str] = set()
         for k in range(count):
             p = pos + 1 + 3 * k
             raw = data[p]
@@ -305,7 +313,8 @@ def _parse_block(r, data, start, end, s, index, alphabet, as_written=None, warni
     return states
 
 
-def _parse_probabilities(r, supervisors, controllable, index, n_sups):
+def _parse_probabilities(r: _Reader, supervisors: Sequence[Sequence[Sequence[Transition]]],
+                         controllable: Sequence[bool], index: Mapping[str, int], n_sups: int) -> None:
     """Nadzoru 2's probabilistic keys: per state ``k, p_1..p_k`` for its k controllable
     out-transitions in sup_data order. Probabilities are read exactly (as fractions)."""
     positions = [r.int(v, "sup_data_prob_pos[%d]" % s, "supervisor %d" % s)

@@ -13,6 +13,7 @@ over MAX_NUMBER_LENGTH characters (``int()`` refuses over 4,300 digits; no coord
 needs 64), tables nested deeper than MAX_DEPTH."""
 
 import re
+from collections.abc import Iterator
 from typing import Any, Dict, Optional, Tuple
 
 MAX_DEPTH = 32
@@ -34,7 +35,7 @@ CONSTANTS = {"true": True, "false": False, "nil": None}
 class LuaSyntaxError(ValueError):
     """The text is not a Lua table literal; ``line`` is where reading stopped."""
 
-    def __init__(self, line: int, message: str):
+    def __init__(self, line: int, message: str) -> None:
         super().__init__("line %d: %s" % (line, message))
         self.line, self.message = line, message
 
@@ -70,13 +71,14 @@ def _unescape(body: str, line: int) -> str:
     return "".join(out)
 
 
-def _tokens(text: str):
+def _tokens(text: str) -> Iterator[Tuple[str, str, int]]:
+    """(kind, text, line) of each token but white space and comments, then ("end", "", line)."""
     pos, line = 0, 1
     while pos < len(text):
         match = TOKEN.match(text, pos)
         if match is None:
             raise LuaSyntaxError(line, "unexpected character %r" % text[pos])
-        kind, value = match.lastgroup, match.group()
+        kind, value = match.lastgroup or "", match.group()     # (every alternative of TOKEN is a named group)
         if kind != "space":
             yield kind, value, line
         line += value.count("\n")
@@ -85,14 +87,14 @@ def _tokens(text: str):
 
 
 class _Parser:
-    def __init__(self, text: str):
+    def __init__(self, text: str) -> None:
         self.tokens = list(_tokens(text))
         self.pos = 0
 
     def peek(self) -> Tuple[str, str, int]:
         return self.tokens[self.pos]
 
-    def take(self, value: Optional[str] = None):
+    def take(self, value: Optional[str] = None) -> Tuple[str, str, int]:
         kind, text, line = self.tokens[self.pos]
         if value is not None and text != value:
             raise LuaSyntaxError(line, "expected %r, found %s" % (value, _shown(text) if text else "end of file"))
@@ -114,7 +116,7 @@ class _Parser:
         raise LuaSyntaxError(line, "expected a value, found %s" % (_shown(text) if text else "end of file"))
 
     @staticmethod
-    def number(text: str, line: int):
+    def number(text: str, line: int) -> int | float:
         """The number a literal denotes, once its length is bounded (``int()`` of thousands of
         digits is a ValueError; a huge exponent is a float's infinity, as in Lua)."""
         if len(text) > MAX_NUMBER_LENGTH:

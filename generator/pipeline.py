@@ -3,15 +3,18 @@
 import functools
 import os
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Optional
 
 from .canonical import canonicalise
 from .errors import InputError
 from .image import pack
 from .load_automata import SUFFIXES, load_automata
 from .load_supervisor import load_supervisor
-from .model import Model
+from .model import Model, Supervisors
 from .naming import model_identifier
+from .runtime import image_format
 from .tables import Tables, build_tables
 
 
@@ -40,7 +43,7 @@ class Compiled:
         return model_identifier(self.stem, self.source)
 
 
-def expand_directories(paths):
+def expand_directories(paths: Sequence[str]) -> list[str]:
     """Each directory among ``paths`` replaced by the automaton files in it, in natural order
     (``x_2.gen`` before ``x_10.gen``): ``swarmvm export --format gen`` writes a set that way."""
     out = []
@@ -55,14 +58,14 @@ def expand_directories(paths):
     return out
 
 
-def load(paths):
+def load(paths: Sequence[str]) -> Supervisors:
     """One supervisor.yaml, or one or more automata (Nadzoru 2 ``.xml``, IDES ``.xmd``, Nadzoru
     ``.nza``, libFAUDES ``.gen``; one local supervisor each, chosen by file extension; a
     directory stands for the automata in it)."""
     return load_as(paths, published=False)
 
 
-def load_as(paths, published):
+def load_as(paths: Sequence[str], published: bool) -> Supervisors:
     """:func:`load`; ``published``: a supervisor.yaml read as the published VMs read it
     (load_supervisor)."""
     paths = expand_directories(paths)
@@ -71,16 +74,18 @@ def load_as(paths, published):
         raise InputError(paths[0], "", "give either one supervisor.yaml or automata (%s), not both" % ", ".join(SUFFIXES))
     if not automata and len(paths) != 1:
         raise InputError(paths[1], "", "a compiled supervisor is one file; give one .yaml at a time")
-    return load_automata(paths) if automata else load_supervisor(paths[0], published)
+    spec: Supervisors = load_automata(paths) if automata else load_supervisor(paths[0], published)
+    return spec
 
 
-def compile_inputs(paths, name=None, names=True, published=False):
+def compile_inputs(paths: Sequence[str], name: Optional[str] = None, names: bool = True,
+                   published: bool = False) -> Compiled:
     """Run the whole pipeline; raises InputError on bad input. ``published``: a supervisor.yaml
     is read as the published VMs read it (load_supervisor)."""
     return compile_spec(load_as(paths, published), paths, name, names)
 
 
-def compile_spec(spec, paths, name=None, names=True):
+def compile_spec(spec: Supervisors, paths: Sequence[str], name: Optional[str] = None, names: bool = True) -> Compiled:
     """The pipeline after loading: canonicalise, build tables, pack the image (and the image
     with the source order, see :class:`Compiled`)."""
     model = canonicalise(spec)
@@ -91,9 +96,9 @@ def compile_spec(spec, paths, name=None, names=True):
         positions = [spec.events.index(event) for event in model.events]
         order = (positions, [number for sup in model.supervisors for number in sup.input_states])
         ordered = pack(tables, spec.source, names=True, order=order)
-        # (A written name over the format's 255 bytes, `EV_` and 253 or more characters, leaves
-        # the source section out: exact mode then names events EV_<name>, as written.)
-        fits = spec.digest and all(len(name) <= 255 for name in spec.written)
+        # (A written name over the format's MAX_NAME_LENGTH bytes, `EV_` and a name filling the
+        # rest, leaves the source section out: exact mode then names events EV_<name>, as written.)
+        fits = spec.digest and all(len(name) <= image_format().MAX_NAME_LENGTH for name in spec.written)
         packed = ordered if not fits else pack(tables, spec.source, names=True, order=order, source_section=(
             spec.digest, [sup.start for sup in model.supervisors], [spec.written[i] for i in positions]))
     stem = name or os.path.splitext(os.path.basename(paths[0]))[0]

@@ -22,8 +22,8 @@ from .model import Model
 
 Vector = Tuple[int, ...]
 
-# Measured on the 2-core reference machine (docs/limits.md): 20,000 product states and their
-# transitions take under a second and about 40 MB in the slowest verb, `check --properties`.
+# Product states a verb explores before it stops: small enough for the slowest verb, `check
+# --properties`, to answer interactively on a small machine (docs/limits.md has its time and memory).
 DEFAULT_MAX_STATES = 20_000
 # Transitions held per state of the budget: a product of many events has many edges per state,
 # and edges, not states, are most of its memory.

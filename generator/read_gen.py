@@ -15,10 +15,11 @@ and reads it back (without it every event is private). Exactly one initial state
 (a supervisor starts somewhere definite)."""
 
 import re
-from typing import List, Tuple
+from typing import Dict, List, Sequence, Tuple
 
 from .automaton import AutomatonBuilder, AutomatonFile
 from .errors import InputError, ascii_int, read_input
+from .runtime import image_format
 
 TOKEN = re.compile(r"""
     (?P<space>\s+|%[^\n]*)
@@ -28,12 +29,13 @@ TOKEN = re.compile(r"""
   | (?P<word>[^\s<>"%+]+)
 """, re.VERBOSE)
 SECTIONS = ("Alphabet", "States", "TransRel", "InitStates", "MarkedStates")
-MAX_CONSECUTIVE = 0x10000     # more states than any image can hold
+MAX_CONSECUTIVE = image_format().MAX_STATES + 1      # more states than any image can hold
 PUBLIC = re.compile(r"^[ \t]*% swarmvm public:(.*)$", re.MULTILINE)
+Token = Tuple[str, str, int]      # (kind, text, line)
 
 
-def _tokens(path: str, text: str) -> List[Tuple[str, str, int]]:
-    out: List[Tuple[str, str, int]] = []
+def _tokens(path: str, text: str) -> List[Token]:
+    out: List[Token] = []
     pos, line = 0, 1
     while pos < len(text):
         match = TOKEN.match(text, pos)
@@ -49,11 +51,11 @@ def _tokens(path: str, text: str) -> List[Tuple[str, str, int]]:
     return out
 
 
-def _sections(path, tokens):
+def _sections(path: str, tokens: List[Token]) -> Dict[str, List[Token]]:
     """{section: [(kind, value, line), ...]} between <Generator> and </Generator>."""
     if not tokens or not re.match(r"<Generator[\s>]", tokens[0][1]) or tokens[0][1].endswith("/>"):
         raise InputError(path, "Generator", "expected <Generator> at the top")
-    body: dict = {}
+    body: Dict[str, List[Token]] = {}
     i = 1
     if i < len(tokens) and tokens[i][0] == "word" and tokens[i][1] not in SECTIONS:
         i += 1                                   # old style: the generator's name as a string
@@ -78,9 +80,9 @@ def _sections(path, tokens):
     return body
 
 
-def _names(path, section, tokens):
+def _names(path: str, section: str, tokens: Sequence[Token]) -> List[str]:
     """State names of a section, expanding <Consecutive> a b </Consecutive> ranges."""
-    out: list = []
+    out: List[str] = []
     i = 0
     while i < len(tokens):
         kind, value, line = tokens[i]

@@ -6,13 +6,15 @@ an event ``name``, ``controllable`` and ``shared`` (Nadzoru's public flag); a tr
 
 The file is parsed as data by :mod:`swarmvm.lua_literal`, never executed."""
 
+from typing import Any, Optional
+
 from .automaton import AutomatonBuilder, AutomatonFile
 from .errors import InputError, read_input
 from .load_supervisor import show_value
 from .lua_literal import LuaSyntaxError, parse_lua_table
 
 
-def _list(path, table, key):
+def _list(path: str, table: dict[Any, Any], key: str) -> list[dict[Any, Any]]:
     """``table[key]`` as a Python list: a Lua sequence 1..n (an absent key is empty). Its keys
     may be anything Lua allows (strings, booleans, numbers mixed): only integers 1..n pass."""
     value = table.get(key, {})
@@ -25,14 +27,14 @@ def _list(path, table, key):
     return [value[i] for i in range(1, len(value) + 1)]
 
 
-def _flag(path, entry, field, key, default=None):
+def _flag(path: str, entry: dict[Any, Any], field: str, key: str, default: Optional[bool] = None) -> bool:
     value = entry.get(field, default)
     if not isinstance(value, bool):
         raise InputError(path, "%s.%s" % (key, field), "expected true or false, got %s" % show_value(value))
     return value
 
 
-def _index(path, entry, field, key, size):
+def _index(path: str, entry: dict[Any, Any], field: str, key: str, size: int) -> int:
     value = entry.get(field)
     if not isinstance(value, int) or isinstance(value, bool) or not 1 <= value <= size:
         raise InputError(path, "%s.%s" % (key, field), "expected an index in 1..%d, got %s" % (size, show_value(value)))

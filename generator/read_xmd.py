@@ -5,16 +5,18 @@ and ``<transition>`` elements; a state's or event's flags are empty elements ins
 IDES has no public flag (every event is private) and allows a transition without an event,
 which swarmvm refuses: a supervisor has no silent moves. Layout (``<meta>``) is ignored."""
 
+from xml.etree.ElementTree import Element
+
 from .automaton import AutomatonBuilder, AutomatonFile, read_fsa_xml
 from .errors import InputError
 
 
-def _properties(element):
+def _properties(element: Element) -> set[str]:
     props = element.find("properties")
     return set() if props is None else {child.tag for child in props}
 
 
-def _id(path, element, attribute, key):
+def _id(path: str, element: Element, attribute: str, key: str) -> str:
     value = (element.get(attribute) or "").strip()
     if not value:
         raise InputError(path, key, "missing attribute %s" % attribute)

@@ -6,11 +6,13 @@ and the index of its first successor in ``targets``. The successor on event e is
 ``targets[first + rank]`` where rank counts the defined events below e: a step needs no
 search, only mask operations, whatever the size of the automata."""
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from math import floor
 from typing import Optional
 
+from .model import Model
 from .runtime import image_format
 
 
@@ -22,48 +24,48 @@ class Tables:
     state_width: int
     controllable: int
     public: int
-    sup_alphabet: tuple
-    sup_first_state: tuple
-    sup_num_states: tuple
-    sup_initial: tuple
-    state_defined: tuple
-    state_first: tuple
-    targets: tuple
-    probs: Optional[tuple]
-    names: tuple
+    sup_alphabet: tuple[int, ...]
+    sup_first_state: tuple[int, ...]
+    sup_num_states: tuple[int, ...]
+    sup_initial: tuple[int, ...]
+    state_defined: tuple[int, ...]
+    state_first: tuple[int, ...]
+    targets: tuple[int, ...]
+    probs: Optional[tuple[int, ...]]
+    names: tuple[str, ...]
 
     @property
-    def num_states(self):
+    def num_states(self) -> int:
         return len(self.state_defined)
 
     @property
-    def num_transitions(self):
+    def num_transitions(self) -> int:
         return len(self.targets)
 
 
-def q15(probability):
+def q15(probability: Fraction | float | str) -> int:
     """A probability as an unsigned Q15 fixed-point number (1.0 = the format's Q15_ONE), rounded
     half up."""
-    one = image_format().Q15_ONE
+    one: int = image_format().Q15_ONE
     return min(one, floor(Fraction(probability) * one + Fraction(1, 2)))
 
 
-def state_width(widest):
+def state_width(widest: int) -> int:
     """Bytes of a target state number for supervisors of at most ``widest`` states: the
     narrowest of the format's STATE_WIDTHS that numbers them all (the widest when none does:
     so many states are over the format's MAX_STATES, which packing refuses)."""
-    widths = image_format().STATE_WIDTHS
+    widths: tuple[int, ...] = image_format().STATE_WIDTHS
     return next((width for width in widths if widest <= 1 << 8 * width), widths[-1])
 
 
-def _mask(indices):
+def _mask(indices: Iterable[int]) -> int:
     value = 0
     for i in indices:
         value |= 1 << i
     return value
 
 
-def build_tables(model):
+def build_tables(model: Model) -> Tables:
     """:class:`~swarmvm.model.Model` -> :class:`Tables`."""
     sup_first: list[int] = []
     sup_count: list[int] = []
@@ -71,7 +73,7 @@ def build_tables(model):
     first: list[int] = []
     targets: list[int] = []
     probs: list[int] = []
-    one = image_format().Q15_ONE
+    one: int = image_format().Q15_ONE
     for sup in model.supervisors:
         sup_first.append(len(defined))
         sup_count.append(len(sup.states))

@@ -10,6 +10,7 @@ here too. Templates only write these values out."""
 from collections.abc import Mapping
 
 from .naming import KILOBOT_MESSAGE_BYTES, event_names
+from .pipeline import Compiled
 
 # The C runtime's files by the part they implement, each in the order builds list them.
 RUNTIME_GROUPS: Mapping[str, tuple[str, ...]] = {
@@ -58,12 +59,12 @@ def features(probabilistic: bool, names: bool) -> list[tuple[str, int]]:
     return [(feature, chosen[feature]) for feature in FEATURES if feature in chosen]
 
 
-def c_values(compiled) -> dict:
+def c_values(compiled: Compiled) -> dict[str, object]:
     """The c target's Makefile: the runtime it compiles (the core and Nadzoru's C API)."""
     return dict(runtime_sources=sources("core", "sct"), runtime_headers=headers("core", "sct"))
 
 
-def kilobot_values(compiled) -> dict:
+def kilobot_values(compiled: Compiled) -> dict[str, object]:
     """The Kilobot target: the runtime its Makefile compiles (more with ``STREAM=1`` and
     ``LEARNED=1``), the features of each build (the streaming one matches a received image's
     events by name), and each public event's message payload (event index -> the first
@@ -76,7 +77,7 @@ def kilobot_values(compiled) -> dict:
                           for e in event_names(compiled.model) if e.message is not None})
 
 
-def capbot_values(compiled) -> dict:
+def capbot_values(compiled: Compiled) -> dict[str, object]:
     """The CapBot's CMakeLists.txt: the runtime it compiles (more with ``SVM_LEARNED``, the store
     on Zephyr's flash last) and its features (main.c matches the logic page's events by name)."""
     return dict(runtime_sources=sources("core", "logic_page"), learned_sources=sources("learn"),

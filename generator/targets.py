@@ -6,25 +6,31 @@ names may use ``{name}``; ``keep`` marks user-edited files that are never overwr
 
 import dataclasses
 from dataclasses import dataclass, field
+from importlib.abc import Traversable
 from typing import Callable
 
 from . import __version__, argos, kilobot, target_values
 from .errors import InputError
 from .escape import UnsafeText
+from .pipeline import Compiled
 from .render import context, render
 from .runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_LEARN_PY, RUNTIME_PY, RUNTIME_PY_DIR
 from .target_values import runtime_files
 
 
+TemplateFile = tuple[str, str, bool]        # (template, output name, keep)
+RuntimeCopy = tuple[Traversable, str]       # (source path, output name)
+
+
 @dataclass(frozen=True)
 class Target:
     description: str
-    templates: tuple                     # (template, output name, keep)
-    copies: tuple = field(default=())    # (source path, output name)
-    learned_templates: tuple = field(default=())   # added by --learned-check (docs/learning.md)
-    learned_copies: tuple = field(default=())
-    prepare: Callable[..., dict] | None = None   # prepare(compiled) -> extra template values; InputError if unfit
-    values: Callable[..., dict] | None = None    # values(compiled) -> template values decided in Python
+    templates: tuple[TemplateFile, ...]
+    copies: tuple[RuntimeCopy, ...] = field(default=())
+    learned_templates: tuple[TemplateFile, ...] = field(default=())   # added by --learned-check (docs/learning.md)
+    learned_copies: tuple[RuntimeCopy, ...] = field(default=())
+    prepare: Callable[[Compiled], dict[str, object]] | None = None   # extra template values; InputError if unfit
+    values: Callable[[Compiled], dict[str, object]] | None = None    # template values decided in Python
     keeps_order: bool = False            # its image keeps the source order (the Python SCT's exact mode)
 
 
@@ -34,7 +40,7 @@ PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm
                      (RUNTIME_PY_DIR / "swarmvm_app.py", "swarmvm_app.py"))
 
 
-def c_copies(*groups, folder=""):
+def c_copies(*groups: str, folder: str = "") -> tuple[RuntimeCopy, ...]:
     """The C runtime's files of ``groups`` (target_values.RUNTIME_GROUPS) as copies into ``folder``."""
     return tuple((RUNTIME_C / n, folder + n) for n in runtime_files(*groups))
 
@@ -103,7 +109,7 @@ TARGETS = {
 }
 
 
-def generate(compiled, target, **options):
+def generate(compiled: Compiled, target: str, **options: object) -> dict[str, tuple[bytes, bool]]:
     """{output name: (bytes, keep)} for one target: rendered templates, runtime copies, image."""
     spec = TARGETS[target]
     name = compiled.name        # refused (InputError) for every target alike, before any target's own checks
@@ -131,7 +137,7 @@ def generate(compiled, target, **options):
     return files
 
 
-def copy_banner(output):
+def copy_banner(output: str) -> bytes:
     """The first line of a runtime file copied into a target: where it comes from, and that
     ``swarmvm gen`` owns it (rewrites it on every run)."""
     text = "Copied from the swarmvm %s runtime by swarmvm gen, which rewrites it: do not edit." % __version__

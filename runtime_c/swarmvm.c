@@ -5,16 +5,13 @@
  */
 #include "swarmvm.h"
 
-#define Q15_ONE 32768u
-#define SEED_FOR_ZERO 0x9E3779B9UL
-
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
 /* The transition code (apply), called once in the step: a function on the bare-metal Cortex-M4
- * (CapBot, -Os), inlined elsewhere. Measured there (benchmarks/m4_cycles.py): inlined into the
- * step, 2-5 % more instructions per step on the models with several supervisors (0.97x the
- * baseline's on network_worker); out of line, 1.01-1.07x. */
+ * (CapBot, -Os), where inlining it into the step costs instructions per step on the models with
+ * several supervisors; inlined elsewhere (docs/footprint.md, "Cost per step";
+ * benchmarks/m4_cycles.py). */
 #if defined(__GNUC__) && defined(__arm__) && !defined(__linux__)
 #define SVM_APPLY __attribute__((noinline))
 #else
@@ -100,9 +97,9 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define MASK_WIDTH(m) ((uint8_t)((m) - 1u) < SVM_MASK_BYTES ? (uint8_t)(m) : (uint8_t)1u)
 
 /* Set bits of a byte. AVR shifts one bit per instruction, so there a table in flash (256 B,
- * SVM_POPCOUNT_TABLE) does it in one lpm: about 4 % off a step; elsewhere bit arithmetic.
- * Measured on the Kilobot core at -O3: a 16 B nibble table or a 128 B one (x & 0x7F, plus the
- * top bit) saved only 50-200 B, the code growing, and cost 1-5 % of a step. */
+ * SVM_POPCOUNT_TABLE) does it in one lpm; elsewhere bit arithmetic. Smaller tables (a nibble's,
+ * or 7 bits' plus the top bit) save little flash, their code growing, and slow the step
+ * (docs/footprint.md, "Cost per step"). */
 #if SVM_POPCOUNT_TABLE
 static const uint8_t ones_in[256] SVM_PROGMEM = {
     0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 1, 2, 2, 3, 2, 3, 3, 4, 2, 3, 3, 4, 3, 4, 4, 5,
@@ -702,8 +699,8 @@ static uint8_t name_char(uint8_t c)
 /* Whether the name whose length byte is at `name` equals one of the names from `first` (the
  * section's start) up to it. The compiler writes each event's name once; a name given twice
  * would make binding by name ambiguous. Only in builds that read names (SVM_WITH_NAMES): the
- * Kilobot's compiled-in build never reads them, and the check would cost its VM core about
- * 110 B of its 4 kB budget (docs/image-format.md). */
+ * Kilobot's compiled-in build never reads them, and its VM core's flash budget cannot spare
+ * the check (docs/image-format.md gives its size). */
 static SVM_COLD uint8_t name_repeats(uint8_t source, const uint8_t *first, const uint8_t *name)
 {
     for (; first != name; first += 1u + PEEK(source, first)) {
@@ -830,17 +827,17 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
         return SVM_ERR_LAYOUT;
     }
     /* (Each test is left out when the limit is the field's range: it could not fail.) */
-#if SVM_MAX_EVENTS < 255
+#if SVM_MAX_EVENTS < SVM_FORMAT_MAX_EVENTS
     if (e > SVM_MAX_EVENTS) {
         return SVM_ERR_LIMITS;
     }
 #endif
-#if SVM_MAX_SUPERVISORS < 255
+#if SVM_MAX_SUPERVISORS < SVM_FORMAT_MAX_SUPERVISORS
     if (h[SVM_AT_NUM_SUPERVISORS] > SVM_MAX_SUPERVISORS) {
         return SVM_ERR_LIMITS;
     }
 #endif
-#if SVM_MAX_STATES < 65535
+#if SVM_MAX_STATES < SVM_FORMAT_MAX_STATES
     if (states > SVM_MAX_STATES) {
         return SVM_ERR_LIMITS;
     }
@@ -911,7 +908,7 @@ SVM_COLD void svm_reset(svm_vm_t *vm)
         vm->previous[s] = 0;
     }
     vm->violations = 0;
-    vm->rng = vm->seed ? vm->seed : SEED_FOR_ZERO;
+    vm->rng = vm->seed ? vm->seed : SVM_ZERO_SEED;
 }
 
 #if SVM_WITH_NAMES
@@ -1299,7 +1296,7 @@ uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled)
 uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
-    uint32_t weight = Q15_ONE;
+    uint32_t weight = SVM_Q15_ONE;
     uint8_t src = vm->source, m = vm->mask_bytes, byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
     if (vm->probs_at == 0) {
         return weight;
@@ -1428,8 +1425,8 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         }
     }
 #endif
-    /* One call of nth_event for one event and for the uniform draw (no draw for one event): a
-     * call each cost 30-138 B of AVR flash at -O3, where both are inlined. */
+    /* One call of nth_event for one event and for the uniform draw (no draw for one event): at
+     * -O3 on AVR both are inlined, so each further call would be another copy in flash. */
     return nth_event(enabled, count == 1u ? 0u : uniform_index(svm_random(vm), count));
 }
 
@@ -1495,15 +1492,15 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
     mask_store(vm->previous, current, SVM_MASK_BYTES);
     /* 3. The occurring events in input order, public (pass 0) then private (pass 1); then the
      * selected event (pass 2). All fire from this one loop, so that -O3 inlines apply once on
-     * AVR: a second call for the control phase cost 330-390 B of the Kilobot core's flash
-     * (network_worker's 4,278 B, over 4 kB; docs/footprint.md, "Cost per step"). */
+     * AVR: a second call for the control phase, a second copy, put the largest model's Kilobot
+     * core over its budget (docs/footprint.md, "Cost per step"). */
     for (pass = 0, cursor_start(&fire, mask_and(occurring, public_mask));; pass++) {
         for (; cursor_any(&fire); cursor_skip_byte(&fire)) {
             uint8_t todo = cursor_byte(&fire), bit = 1;
             for (event = fire.base; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
                 if (todo & 1u) {
                     /* Byte 0 spelled out for 1-byte masks: the compiler then drops apply's
-                     * byte arithmetic (measured: 3-5 % of an AVR step on those models). */
+                     * byte arithmetic (docs/footprint.md, "Cost per step"). */
                     apply(vm, event, m == 1u ? 0u : (uint8_t)(fire.base >> 3), bit, m);
                     fired++;
                 }

@@ -21,7 +21,7 @@
  *                         SVM_FLASH_ONLY (svm_load_P only; faster, smaller), SVM_RAM_ONLY,
  *                         or SVM_ANY_SOURCE (also EEPROM, svm_load_E)
  *   SVM_POPCOUNT_TABLE    1: count the bits of a mask byte with a 256-byte table in flash
- *                         (default on AVR, where it saves about 4 % of a step, but at -Os,
+ *                         (default on AVR, where it shortens a step (docs/footprint.md), but at -Os,
  *                         which asks for flash first, and on hosts; not on bare-metal ARM),
  *                         0: arithmetic
  *   SVM_CRC_TABLE         1: the image checksum (CRC-16/MCRF4XX, swarmvm.c) looks up four
@@ -156,6 +156,7 @@ typedef uint16_t svm_state_t;
 #define SVM_FLAG_ORDER 0x04u        /* the order section (source-file event indices) is present */
 #define SVM_FLAG_SOURCE 0x08u       /* the source section (the compatibility layers': skipped) is present */
 #define SVM_KNOWN_FLAGS 0x0Fu       /* an image with any other flag bit is refused */
+#define SVM_Q15_ONE 32768u          /* probability 1 in the probability section's Q15 */
 
 /* ---- result codes of svm_load and friends (0 = success) -------------------------------- */
 enum svm_result {
@@ -190,6 +191,7 @@ enum svm_result {
 #define SVM_POLICY_MASK 0x0Cu
 
 #define SVM_DEFAULT_SEED 1u
+#define SVM_ZERO_SEED 0x9E3779B9UL  /* what seed 0, a fixed point of xorshift32, is replaced by */
 
 struct svm_vm;
 

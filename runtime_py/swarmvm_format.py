@@ -15,8 +15,9 @@ import enum
 import functools
 import itertools
 import operator
+import os
 import struct
-from typing import Dict, List, Literal, NamedTuple, Optional, Tuple
+from typing import Any, Dict, List, Literal, NamedTuple, Optional, Tuple, Union
 
 __all__ = ["ErrorCode", "Header", "Image", "ImageError", "Source", "assemble", "crc16", "read_header"]
 
@@ -164,7 +165,7 @@ def read_header(raw: bytes) -> Header:
     return Header._make(_checked_fields(bytes(raw)))
 
 
-def _checked_fields(raw: bytes) -> tuple:
+def _checked_fields(raw: bytes) -> Tuple[Any, ...]:
     """read_header's checks, giving the header's fields as HEADER unpacks them (a plain tuple:
     Image.parse does not need a Header made). The checksum is checked by its residue: the CRC
     of the bit-reversed image, stored checksum included, is 0 exactly when the checksum is
@@ -271,7 +272,7 @@ class Image:
         self.source = source            # the source section (Source), or None
 
     @classmethod
-    def load(cls, path) -> "Image":
+    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Image":
         """Read a ``.svm`` file: at most MAX_IMAGE_SIZE + 1 bytes, so that a huge or endless
         file (``/dev/zero``) is refused without reading it all."""
         with open(path, "rb") as handle:

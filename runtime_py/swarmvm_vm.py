@@ -12,6 +12,8 @@ as a bytes literal or read from a ``.svm`` file: both go through :meth:`Image.pa
 do ahead of time, and what they gained.
 """
 
+from __future__ import annotations
+
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
            "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
 
@@ -22,16 +24,35 @@ import operator
 import os
 import random
 import types
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Optional, Protocol, Sequence, Tuple, Union, cast
 
-from swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+if TYPE_CHECKING:   # mypy reads the format as the package's module; the VM imports the copy beside it
+    from runtime_py.swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+else:
+    from swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
 
 INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
 POLICIES = ("uniform", "first", "weighted", "learned")
 MAX_VIOLATIONS = 0xFFFFFFFF     # the violation counter stops here on every runtime (docs/semantics.md)
 
+# A callback is called with the data bound with it; a check's result counts as true or false. (Any
+# callable: one with more parameters defaulted, as ``lambda data, event=event: ...``, is one too.)
+Callback = Callable[..., Any]
+Act = Tuple[Callback, Any]                      # an event's bound (action, data)
+Plan = Tuple[list[Optional[Act]], bool]         # VM._bound: per event its Act or None; a controllable event?
+Column = list[Optional[int]]                    # a supervisor's successor of each of its states on one event
+Successors = Tuple[Tuple[int, Column], ...]     # per event: (supervisor, column) of each supervisor that has it
+Gate = Tuple[int, list[int]]                    # (supervisor, the controllable events it allows in each state)
 
-def callback_stem(name):
+
+class Learner(Protocol):
+    """What policy ``learned`` asks (swarmvm_learn.py): one of ``enabled``, chosen for ``vm``."""
+
+    def choose(self, vm: VM, enabled: Sequence[int]) -> int: ...
+
+
+def callback_stem(name: str) -> str:
     """The part of a callback's name that names its event (``on_<stem>``, ``check_<stem>``), in
     every target: the bare name, except that the receive side of a public event, ``_x``, is
     ``received_x`` (C++ reserves identifiers with ``__``). The generator names every generated
@@ -42,7 +63,7 @@ def callback_stem(name):
 class UnboundEvents(LookupError):
     """Strict mode: uncontrollable events without a check (they could never occur)."""
 
-    def __init__(self, names):
+    def __init__(self, names: list[str]) -> None:
         super().__init__("no check bound for " + ", ".join(names))
         self.names = names
 
@@ -55,7 +76,7 @@ class CallbackError(RuntimeError):
     the step after its own event's transition, which stays applied (the supervisors have moved;
     the robot's side of it failed). Either way the next ``step()`` runs normally."""
 
-    def __init__(self, event, kind, cause):
+    def __init__(self, event: str, kind: str, cause: BaseException) -> None:
         super().__init__("the %s of %s raised %s: %s" % (kind, event, type(cause).__name__, cause))
         self.event, self.kind = event, kind
 
@@ -66,10 +87,10 @@ class XorShift32:
     Cheap on an 8-bit AVR and specified bit for bit, so a seed gives the same choices on every
     target. Seed 0 (a fixed point of xorshift) is replaced by 0x9E3779B9."""
 
-    def __init__(self, seed=1):
+    def __init__(self, seed: int = 1) -> None:
         self.state = (seed & 0xFFFFFFFF) or 0x9E3779B9
 
-    def next(self):
+    def next(self) -> int:
         x = self.state
         x ^= (x << 13) & 0xFFFFFFFF
         x ^= x >> 17
@@ -77,12 +98,12 @@ class XorShift32:
         self.state = x
         return x
 
-    def below(self, n):
+    def below(self, n: int) -> int:
         """An index in [0, n) for n < 65536: the top 16 bits scaled by n, no division."""
         return ((self.next() >> 16) * n) >> 16
 
 
-def _bits(mask):
+def _bits(mask: int) -> list[int]:
     """Indices of the set bits of ``mask``, lowest first (canonical event order): one pass per
     set bit, not per bit."""
     out = []
@@ -93,12 +114,12 @@ def _bits(mask):
     return out
 
 
-def _check_args(count):
+def _check_args(count: int) -> str:
     """The parameters of a written-out poll: each check and its data as a default argument."""
     return "".join(", c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(count))
 
 
-def _poll_lines(events, wrap):
+def _poll_lines(events: Sequence[int], wrap: bool) -> list[str]:
     """Source lines that make ``fired``: each check ``c<i>`` called with its data ``d<i>`` once,
     in order, and the event of each check that is true added; ``wrap``: a check that raises
     raises CallbackError naming its event (``event_name``), else the exception as it is.
@@ -120,7 +141,7 @@ def _poll_lines(events, wrap):
             + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
 
 
-def _compiled(key, parameters, lines):
+def _compiled(key: Tuple[object, ...], parameters: Sequence[str], lines: list[str]) -> types.FunctionType:
     """The function ``make(*parameters)`` whose body is the source ``lines``, compiled once per
     ``key`` (the code depends on the events and options alone, not on the callbacks):
     _COMPILED. The caller passes the parameters by name (``make(**parts)``), so the names are
@@ -133,7 +154,7 @@ def _compiled(key, parameters, lines):
         source = "".join(line + "\n" for line in ["def make(%s):" % ", ".join(parameters)]
                          + ["    " + line for line in lines])
         filename = "<swarmvm %s step %s>" % (key[0], hashlib.sha256(source.encode()).hexdigest()[:12])
-        namespace: dict = {}
+        namespace: dict[str, Any] = {}
         exec(compile(source, filename, "exec"), namespace)
         if len(_COMPILED) >= MAX_COMPILED:
             for old in _COMPILED.values():
@@ -144,11 +165,11 @@ def _compiled(key, parameters, lines):
     return make
 
 
-_COMPILED: dict = {}    # key -> the compiled maker of a written-out poll or step
+_COMPILED: dict[Tuple[object, ...], types.FunctionType] = {}    # key -> the compiled maker of a written-out step
 MAX_COMPILED = 64
 
 
-def _move_lines(sole, total, cut):
+def _move_lines(sole: bool, total: bool, cut: list[str]) -> list[str]:
     """Source lines that fire the inputs in ``fired``: each supervisor that has the event moves
     (``total``: no input can violate, so no check for a missing move), then its action runs.
     ``sole``: the image has one supervisor, whose state is ``states[0]`` and whose column of
@@ -180,19 +201,19 @@ def _move_lines(sole, total, cut):
                    "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
 
 
-def _mask_line(gate_sups):
+def _mask_line(gate_sups: Sequence[int]) -> str:
     """The source line that makes ``mask``, the controllable events every supervisor allows in
     its state: an AND over the gates (``g<i>``, the masks by state of supervisor
     ``gate_sups[i]``) written out, no loop (VM._enabled_mask is the same, out of line)."""
     return "mask = controllable" + "".join(" & g%d[states[%d]]" % (i, sup) for i, sup in enumerate(gate_sups))
 
 
-def _gate_lines(gate_sups):
+def _gate_lines(gate_sups: Sequence[int]) -> list[str]:
     """The lines of ``make`` that name each gate's masks ``g<i>`` for _mask_line."""
     return ["g%d = gates[%d][1]" % (i, i) for i in range(len(gate_sups))]
 
 
-def _choice_lines(uniform, sole, gate_sups):
+def _choice_lines(uniform: bool, sole: bool, gate_sups: Sequence[int]) -> list[str]:
     """Source lines that fire one of the enabled controllable events: the uniform policy's draw
     (XorShift32.next, the generator's one definition, called; its number scaled to an index as
     XorShift32.below does, whose call would cost the step a second frame) or the VM's
@@ -222,7 +243,8 @@ def _choice_lines(uniform, sole, gate_sups):
     return body + ["    fired.append(choice)"]
 
 
-def _stepper(parameters, events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups):
+def _stepper(parameters: Tuple[str, ...], events: Tuple[int, ...], edge: bool, quiet: bool, uniform: bool, strict: bool,
+             chooses: bool, total: bool, sole: bool, gate_sups: Tuple[int, ...]) -> types.FunctionType:
     """The maker of a VM's step written out for its plan (``make`` takes ``parameters``, the
     names of the parts of VM._bound's plan): the checks of ``events`` polled (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
     inputs, if-quiet control, uniform policy, strict, a controllable event to choose), the
@@ -258,7 +280,7 @@ def _stepper(parameters, events, edge, quiet, uniform, strict, chooses, total, s
                      + ["    " + line for line in body] + ["return step"])
 
 
-def _exact_inputs_lines(sole, total, public_first, acting):
+def _exact_inputs_lines(sole: bool, total: bool, public_first: bool, acting: bool) -> list[str]:
     """Source lines of the exact step that apply the inputs in ``fired`` (file indices; SCTPub:
     public ones first, ``private`` by file index), each action right after its event's moves,
     as _move_lines does for the canonical step but without mapping the step's events to file
@@ -313,7 +335,7 @@ def _exact_inputs_lines(sole, total, public_first, acting):
         "    sct.input_buffer = fired"]
 
 
-def _exact_choice_lines(sole, gate_sups):
+def _exact_choice_lines(sole: bool, gate_sups: Sequence[int]) -> list[str]:
     """Source lines of the published choice: the enabled controllable events in file order (one
     supervisor: its state's entry in ``table``, SCT._sole_entry; else per enabled mask,
     SCT._file_order), the k-th with ``k = random.randint(0, 1000000000) % n`` drawn as CPython's
@@ -351,7 +373,8 @@ def _exact_choice_lines(sole, gate_sups):
                     "sct.last_events = fired[:]"]
 
 
-def _exact_stepper(parameters, events, public_first, chooses, total, sole, acting, gate_sups):
+def _exact_stepper(parameters: Tuple[str, ...], events: Tuple[int, ...], public_first: bool, chooses: bool, total: bool,
+                   sole: bool, acting: bool, gate_sups: Tuple[int, ...]) -> types.FunctionType:
     """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper; ``make``
     takes ``parameters``, the names of SCT._plan_exact's parts), in the file's event indices
     throughout, so nothing is mapped to file order per step: the
@@ -373,7 +396,7 @@ def _exact_stepper(parameters, events, public_first, chooses, total, sole, actin
                      + ["    " + line for line in body] + ["return run_step"])
 
 
-def check_options(inputs, control, policy, learner):
+def check_options(inputs: str, control: str, policy: str, learner: Optional[Learner]) -> None:
     """ValueError unless the run options are among those of docs/semantics.md ("Options
     summary"), and policy ``learned`` has its learner: the options of every Python VM."""
     if inputs not in INPUT_MODES:
@@ -395,23 +418,24 @@ class Bindings:
     image: Image
     num_events: int
     strict: bool
-    input_order: list
-    actions: dict
-    checks: dict
-    data: dict
+    input_order: list[int]
+    actions: dict[int, Callback]
+    checks: dict[int, Callback]
+    data: dict[int, Any]
     _bindings_checked: bool
 
-    def _replan(self):
+    def _replan(self) -> None:
         """Called after every bind: what the step prepared for the bindings is stale."""
 
-    def _index(self, event):
+    def _index(self, event: Union[int, str]) -> int:
         if isinstance(event, int):
             if not 0 <= event < self.num_events:
                 raise KeyError("event index %d out of range (0..%d)" % (event, self.num_events - 1))
             return event
         return self.image.event_index(event)
 
-    def bind(self, event, action=None, check=None, data=None):
+    def bind(self, event: Union[int, str], action: Optional[Callback] = None, check: Optional[Callback] = None,
+             data: Any = None) -> None:
         """Bind an action and/or a check to an event given by name (``EV_x`` or ``x``) or index.
 
         A name the supervisor does not have is an error (KeyError), never event 0."""
@@ -426,7 +450,7 @@ class Bindings:
         self._bindings_checked = False
         self._replan()
 
-    def bind_controller(self, controller):
+    def bind_controller(self, controller: object) -> None:
         """Bind ``on_<stem>`` and ``check_<stem>`` methods of an object, by event name
         (:func:`callback_stem`: ``check_received_x`` for the message event ``EV__x``)."""
         for e in range(self.num_events):
@@ -438,17 +462,17 @@ class Bindings:
             else:
                 self.bind(e, action=action)
 
-    def unbound_checks(self):
+    def unbound_checks(self) -> list[str]:
         """Names of uncontrollable events with no check (they can never occur)."""
         return [self.image.event_name(e) for e in self.input_order if e not in self.checks]
 
-    def _check_bindings(self):
+    def _check_bindings(self) -> None:
         """Strict mode, before a step: every uncontrollable event has a check."""
         if self.unbound_checks():
             raise UnboundEvents(self.unbound_checks())
         self._bindings_checked = True
 
-    def _rebind(self, new):
+    def _rebind(self, new: Image) -> list[str]:
         """The callbacks moved to image ``new`` by name, for a load (``load`` of each VM);
         KeyError for a name ``new`` lacks, or UnboundEvents in strict mode when a check is
         missing, before anything changes. Returns the uncontrollable events of ``new`` left
@@ -472,13 +496,13 @@ class _Option:
     """A run option of :class:`VM` (inputs, control, policy, strict) that the step is written
     out for (VM._bound) rather than reads per step: setting one makes the VM plan again."""
 
-    def __set_name__(self, owner, name):
+    def __set_name__(self, owner: type, name: str) -> None:
         self.slot = "_" + name
 
-    def __get__(self, vm, owner=None):
+    def __get__(self, vm: Optional[VM], owner: Optional[type] = None) -> Any:
         return self if vm is None else getattr(vm, self.slot)
 
-    def __set__(self, vm, value):
+    def __set__(self, vm: VM, value: object) -> None:
         setattr(vm, self.slot, value)
         vm._replan()
 
@@ -493,10 +517,12 @@ class VM(Bindings):
     bindings and options in force and installed on the VM (see _bound)."""
 
     inputs, control, policy, strict = _Option(), _Option(), _Option(), _Option()
-    _plan: tuple | None     # see _bound
+    _plan: Plan | None     # see _bound
 
-    def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
-                 priority=None, learner=None, on_violation=None, strict=False):
+    def __init__(self, image: Union[Image, bytes], inputs: str = "level", control: str = "after-inputs",
+                 policy: str = "uniform", seed: int = 1, priority: Optional[Sequence[Union[int, str]]] = None,
+                 learner: Optional[Learner] = None, on_violation: Optional[Callable[[int, int], Any]] = None,
+                 strict: bool = False) -> None:
         check_options(inputs, control, policy, learner)
         self._inputs, self._control, self._policy, self._strict = inputs, control, policy, strict
         self.seed, self.learner, self.on_violation = seed, learner, on_violation
@@ -508,7 +534,7 @@ class VM(Bindings):
         self.reset()
 
     # -- tables -------------------------------------------------------------------------------
-    def _install(self, image):
+    def _install(self, image: Image) -> None:
         """Derive the per-state lookup structures the step uses from an image."""
         self.image = image
         events = self.num_events = image.num_events
@@ -520,8 +546,8 @@ class VM(Bindings):
         # each of its states on the event, None where undefined): one list index per move.
         # The gates: the supervisors that can disable a controllable event, each with the
         # controllable events it allows in each of its states (the enabled set is their AND).
-        successors: list = [()] * events
-        gates = []
+        successors: list[Successors] = [()] * events
+        gates: list[Gate] = []
         inputs_total = True     # no state leaves an uncontrollable event of its alphabet undefined
         targets, state_defined = image.targets, image.state_defined
         pairs = list(zip(state_defined, image.state_first))     # each state's (defined events, first successor)
@@ -549,26 +575,27 @@ class VM(Bindings):
         # violate, and the step moves the inputs by these successors without a check (else None).
         self._total = successors if inputs_total else None
         self._gates = tuple(gates)
-        self._moves = None
+        self._moves: Optional[list[list[dict[int, int]]]] = None
         self._replan()
-        self._enabled_sets = {}     # mask of enabled events -> those events, in canonical order
+        self._enabled_sets: dict[int, Tuple[int, ...]] = {}     # mask of enabled events -> those events, in canonical order
         # One supervisor: per state, its enabled events and the state after each (_sole_entry).
-        self._sole: list | None = [None] * image.sup_num_states[0] if image.num_supervisors == 1 else None
+        self._sole: list[Optional[Tuple[Tuple[int, ...], Tuple[Optional[int], ...]]]] | None = (
+            [None] * image.sup_num_states[0] if image.num_supervisors == 1 else None)
         # Rank of each event for policy "first": listed events first, the rest by name.
         self.rank = self._ranks() if self._priority else list(range(events))
 
-    def _ranks(self):
+    def _ranks(self) -> list[int]:
         """Each event's rank for policy "first": the events of ``priority`` first, in its order,
         then the others by name."""
-        listed = [self._index(name) for name in self._priority]
+        listed = [self._index(name) for name in self._priority or ()]
         return [listed.index(e) if e in listed else len(listed) + e for e in range(self.num_events)]
 
     @property
-    def moves(self):
+    def moves(self) -> list[list[dict[int, int]]]:
         """Per supervisor, per state: {event: successor}, built from ``successors`` on first use
         (the step does not use it)."""
         if self._moves is None:
-            moves: list = [[{} for _ in range(count)] for count in self.image.sup_num_states]
+            moves: list[list[dict[int, int]]] = [[{} for _ in range(count)] for count in self.image.sup_num_states]
             for event, pairs in enumerate(self.successors):
                 for sup, column in pairs:
                     for local, target in enumerate(column):
@@ -577,7 +604,7 @@ class VM(Bindings):
             self._moves = moves
         return self._moves
 
-    def load(self, image):
+    def load(self, image: Union[Image, bytes]) -> list[str]:
         """Swap in a new table image between two steps; states restart from its initial states.
         An action may load one during a step, which then ends after that action: nothing else
         fires in it (the inputs were polled, and the choice would be made, for the old image).
@@ -598,7 +625,7 @@ class VM(Bindings):
         return missing
 
     # -- running ------------------------------------------------------------------------------
-    def reset(self):
+    def reset(self) -> None:
         """Back to the initial states, cleared inputs and counters, generator re-seeded."""
         self.states = list(self.image.sup_initial)
         self._bindings_checked = False
@@ -606,23 +633,23 @@ class VM(Bindings):
         self.violations = 0
         self.rng = XorShift32(self.seed)
 
-    def _enabled_mask(self):
+    def _enabled_mask(self) -> int:
         """The controllable events every supervisor allows in its state: an AND over the gates."""
         mask, states = self.image.controllable, self.states
         for sup, masks in self._gates:
             mask &= masks[states[sup]]
         return mask
 
-    def enabled(self):
+    def enabled(self) -> list[int]:
         """Controllable events enabled by every supervisor, in canonical order."""
         return _bits(self._enabled_mask())
 
-    def _enabled_set(self, mask):
+    def _enabled_set(self, mask: int) -> Tuple[int, ...]:
         """The events of an enabled ``mask``, a tuple in canonical order, remembered per mask."""
         enabled = self._enabled_sets[mask] = tuple(_bits(mask))
         return enabled
 
-    def _sole_entry(self):
+    def _sole_entry(self) -> Tuple[Tuple[int, ...], Tuple[Optional[int], ...]]:
         """(the enabled events at the state of a one-supervisor image, its state after each),
         remembered in ``_sole``: such a model has few states, so every one met is kept. An
         event outside the supervisor's alphabet leaves it where it is."""
@@ -634,7 +661,7 @@ class VM(Bindings):
         entry = table[state] = (enabled, afters)
         return entry
 
-    def _choose(self, fired):
+    def _choose(self, fired: list[int]) -> list[int]:
         """The rest of a step whose plan a callback replaced while the inputs fired (a rebind or
         a change of option): one enabled controllable event chosen and fired as the written-out
         step does, out of line, from the VM as it now is; returns ``fired`` with it."""
@@ -645,7 +672,7 @@ class VM(Bindings):
             fired.append(choice)
         return fired
 
-    def _bound(self):
+    def _bound(self) -> Plan:
         """The plan: what the step needs of the bindings, the options and the tables, made
         after a bind, a load or a change of option. It is (per event its (action, data) or None,
         whether there is a controllable event); making it also writes the step out for it
@@ -654,7 +681,8 @@ class VM(Bindings):
         if plan is None:
             checks, actions, data = self.checks, self.actions, self.data
             polls = [(e, checks[e], data.get(e)) for e in self.input_order if e in checks]
-            acts = [(actions[e], data.get(e)) if e in actions else None for e in range(self.num_events)]
+            acts: list[Optional[Act]] = [(actions[e], data.get(e)) if e in actions else None
+                                         for e in range(self.num_events)]
             chooses = bool(self.image.controllable)
             plan = self._plan = (acts, chooses)
             sole = self._sole is not None
@@ -669,12 +697,12 @@ class VM(Bindings):
             self.__dict__["step"] = types.MethodType(make(**parts), self)
         return plan
 
-    def _replan(self):
+    def _replan(self) -> None:
         """Drop the plan and the step written out for it."""
         self._plan = None
         self.__dict__.pop("step", None)
 
-    def _fire(self, events, acts):
+    def _fire(self, events: Iterable[int], acts: Sequence[Optional[Act]]) -> None:
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
         counts a violation), then its action from ``acts`` (the bound plan's) runs. A callback
         may rebind or set ``states``: what it changed holds for the events after it; an action
@@ -695,7 +723,7 @@ class VM(Bindings):
                     return
                 states, acts = self.states, self._bound()[0]
 
-    def _violate(self, event, sup):
+    def _violate(self, event: int, sup: int) -> None:
         """Supervisor ``sup`` has no move on ``event``: count a violation (the counter stops at
         MAX_VIOLATIONS) and tell ``on_violation``, which may rebind or set ``states`` but not
         load an image (``load`` refuses: the other supervisors of the event are still to move)."""
@@ -710,18 +738,18 @@ class VM(Bindings):
             finally:
                 self._in_hook = False
 
-    def _act(self, event, act):
+    def _act(self, event: int, act: Act) -> None:
         """Run an event's bound (action, data); CallbackError if the action raises."""
         try:
             act[0](act[1])
         except Exception as exc:
             raise CallbackError(self.image.event_name(event), "action", exc) from exc
 
-    def _apply(self, event):
+    def _apply(self, event: int) -> None:
         """Fire one event (the conformance tests re-derive enabled sets with it)."""
         self._fire((event,), self._bound()[0])
 
-    def _weight(self, event):
+    def _weight(self, event: int) -> int:
         """The event's Q15 weight: the product of its probability in each supervisor that has
         it, read from the image's probability section where the state's successors are."""
         image = self.image
@@ -733,12 +761,12 @@ class VM(Bindings):
                 weight = (weight * image.probs[image.state_first[g] + (image.state_defined[g] & below).bit_count()]) >> 15
         return weight
 
-    def select(self, enabled):
+    def select(self, enabled: Sequence[int]) -> int:
         """One of the enabled controllable events, by the VM's policy (enabled is non-empty)."""
         if self.policy == "first":
             return min(enabled, key=self.rank.__getitem__)
         if self.policy == "learned":
-            return self.learner.choose(self, enabled)
+            return cast(Learner, self.learner).choose(self, enabled)     # (check_options: given with the policy)
         if len(enabled) == 1:
             return enabled[0]
         if self.policy == "uniform":
@@ -754,7 +782,7 @@ class VM(Bindings):
             pick -= weight
         raise AssertionError("unreachable: pick below total")
 
-    def step(self):
+    def step(self) -> list[int]:
         """One VM step; returns the events that fired, in order (indices). This runs once per
         plan: making the plan (_bound) installs the step written out for it, which runs from
         then on."""
@@ -762,17 +790,17 @@ class VM(Bindings):
         return self.step()
 
 
-def format_trace_line(step, names, states, violations):
+def format_trace_line(step: int, names: Sequence[str], states: Sequence[int], violations: int) -> str:
     """One line of the canonical trace (docs/conformance.md): step, events, states, violations."""
     return "%d %s %s %d" % (step, ",".join(names) or "-", ",".join(str(s) for s in states), violations)
 
 
-def replay_lines(vm, rows):
+def replay_lines(vm: VM, rows: Iterable[Iterable[int]]) -> Iterator[str]:
     """Run ``vm`` from reset on an event script (an iterable of sets of event indices, one per
     step), producing the canonical trace lines one step at a time (constant memory). This is
     the reference conformance harness: the C and C++ harnesses do exactly this and must print
     the same lines."""
-    script: dict = {"row": set()}
+    script: dict[str, Iterable[int]] = {"row": set()}
     for event in vm.input_order:
         vm.bind(event, check=lambda _data, event=event: event in script["row"])
     vm.reset()
@@ -783,7 +811,7 @@ def replay_lines(vm, rows):
         yield format_trace_line(number, [name(e) for e in fired], vm.states, vm.violations)
 
 
-def replay(vm, rows):
+def replay(vm: VM, rows: Iterable[Iterable[int]]) -> list[str]:
     """The lines of :func:`replay_lines`, as a list."""
     return list(replay_lines(vm, rows))
 
@@ -811,7 +839,7 @@ class SCT:
 
     _public_first = False
 
-    def __init__(self, filename, exact=True, **options):
+    def __init__(self, filename: str, exact: bool = True, **options: Any) -> None:
         image, file_events, file_states = _compat_image(filename)
         if exact and file_states is None:
             raise ValueError("%s: exact mode needs the supervisor file's event order, which this image does not "
@@ -822,7 +850,8 @@ class SCT:
         self._file_states = file_states if exact else None
         # Index a caller sees -> canonical index: the file's order in exact mode, else the image's;
         # the names EV holds: the file's as written in exact mode, else swarmvm's (EV_<name>).
-        self._canonical = file_events if exact else list(range(image.num_events))
+        # (file_events is None only with file_states, which exact mode has: checked above.)
+        self._canonical: list[int] = cast("list[int]", file_events) if exact else list(range(image.num_events))
         written = image.source.written if exact and image.source is not None else None
         self.EV = {(written[c] if written else image.event_name(c)): i for i, c in enumerate(self._canonical)}
         if exact and image.source is not None:      # the published VMs start from sup_current_state
@@ -833,27 +862,29 @@ class SCT:
         self.ev_controllable = [image.controllable >> c & 1 for c in self._canonical]
         self.num_events = image.num_events
         self.num_supervisors = image.num_supervisors
-        self.last_events, self.input_buffer = [], []
+        self.last_events: list[int] = []
+        self.input_buffer: list[int] = []
         if exact:
             self._checks_order = [i for i in range(len(self._canonical)) if not self.ev_controllable[i]]
             self._file_index = [0] * len(self._canonical)
             for i, c in enumerate(self._canonical):
                 self._file_index[c] = i
             self._private = [0 if image.public >> c & 1 else 1 for c in self._canonical]     # by file index
-            self._orders: dict = {}     # enabled mask -> _file_order's list
-            self._sole_table: list = []     # one supervisor: per state, _sole_entry's (or None until met)
-            self._sole_columns: list = []   # one supervisor: per file event, its state after each state
-            self._file_successors: list = []    # per file event, VM.successors of its canonical index
-            self._tables_of = None          # the image the four above were made for
+            self._orders: dict[int, list[Tuple[int, int]]] = {}     # enabled mask -> _file_order's list
+            # one supervisor: per state, _sole_entry's (or None until met)
+            self._sole_table: list[Optional[Tuple[list[int], Column, list[int]]]] = []
+            self._sole_columns: list[Column] = []   # one supervisor: per file event, its state after each state
+            self._file_successors: list[Successors] = []    # per file event, VM.successors of its canonical index
+            self._tables_of: Optional[Image] = None         # the image the four above were made for
 
     @property
-    def sup_current_state(self):
+    def sup_current_state(self) -> list[int]:
         """Each supervisor's state: numbered as in the file in exact mode, else canonically."""
         if self._file_states is None:
             return self.vm.states
         return [numbers[state] for numbers, state in zip(self._file_states, self.vm.states)]
 
-    def add_callback(self, event, clbk, ci, sup_data):
+    def add_callback(self, event: int, clbk: Optional[Callback], ci: Optional[Callback], sup_data: Any) -> None:
         """Register the event's callback, check and data. Exact mode, as published: registering
         again replaces all three (None included), and a check on a controllable event is
         accepted and, as the published step polls uncontrollable events only, never called.
@@ -865,7 +896,7 @@ class SCT:
             self.vm.checks.pop(canonical, None)
         self.vm.bind(canonical, action=clbk, check=None if controllable else ci, data=sup_data)
 
-    def run_step(self):
+    def run_step(self) -> None:
         """One step; ``last_events`` are the events it applied and ``input_buffer`` the
         uncontrollable ones whose check was true (indices as in ``EV``). In exact mode this
         runs once per plan of the VM: it installs the step written out for it (_plan_exact)."""
@@ -875,7 +906,7 @@ class SCT:
             self.__dict__["run_step"] = types.MethodType(_canonical_run_step, self)
         return self.run_step()
 
-    def _plan_exact(self):
+    def _plan_exact(self) -> None:
         """Write the exact step out for the VM's current plan (_exact_stepper) and install it on
         this object, where ``run_step`` finds it before the class's; it plans again when the
         VM's plan changes."""
@@ -901,19 +932,19 @@ class SCT:
                               vm._total is not None, sole, acting, gate_sups)
         self.__dict__["run_step"] = types.MethodType(make(**parts), self)
 
-    def _column(self, event):
+    def _column(self, event: int) -> Column:
         """A one-supervisor image's state after each of its states on canonical ``event``: its
         column, None where undefined; a column that stays for an event outside its alphabet."""
         pairs = self.vm.successors[event]
         return pairs[0][1] if pairs else list(range(self.vm.image.sup_num_states[0]))
 
-    def _file_order(self, mask):
+    def _file_order(self, mask: int) -> list[Tuple[int, int]]:
         """The enabled events of ``mask`` in file order, as (file index, canonical index) pairs,
         remembered per mask: the published choice takes the k-th of them."""
         order = self._orders[mask] = sorted((self._file_index[e], e) for e in _bits(mask))
         return order
 
-    def _sole_entry(self, state):
+    def _sole_entry(self, state: int) -> Tuple[list[int], Column, list[int]]:
         """(the enabled controllable events of a one-supervisor image at ``state`` in file order,
         the state after each, each one's canonical index), remembered in ``_sole_table``: the
         published choice takes the k-th of each."""
@@ -923,7 +954,7 @@ class SCT:
                                            [self._canonical[f] for f in order])
         return entry
 
-    def _choose(self, inputs):
+    def _choose(self, inputs: list[int]) -> None:
         """The published choice of a step whose VM plan a callback replaced while the inputs
         fired (a rebind or a change of option), out of line, from the VM as it now is: ``randint`` itself
         draws (the written-out step makes the same number without calling it)."""
@@ -936,11 +967,11 @@ class SCT:
         else:
             self.last_events = inputs[:]
 
-    def get_events(self):
+    def get_events(self) -> Tuple[dict[str, int], list[int]]:
         return self.EV, self.ev_controllable
 
 
-def _canonical_run_step(sct):
+def _canonical_run_step(sct: SCT) -> None:
     """SCT.run_step with ``exact=False``, installed on the object by the first run_step: the
     VM's step, whose events are its inputs, then at most one controllable event."""
     fired = sct.last_events = sct.vm.step()
@@ -955,13 +986,13 @@ class SCTPub(SCT):
     _public_first = True
 
 
-def _compat_image(filename):
+def _compat_image(filename: str) -> Tuple[Image, Optional[list[int]], Optional[list[list[int]]]]:
     """(image, the canonical index of each of the file's events in file order, each supervisor's
     file state numbers by canonical state) for :class:`SCT`; the last two None when the image
     has no order section. A YAML path is compiled in memory, as the published VMs read it
     (``swarmvm pack``'s image), when it exists and the swarmvm compiler can be imported;
     otherwise the ``.svm`` beside it is read (_image_beside), as is a ``.svm`` path."""
-    image = None
+    image: Optional[Image] = None
     if filename.endswith(".yaml") and os.path.exists(filename):
         try:
             from swarmvm.pipeline import compile_inputs
@@ -981,7 +1012,7 @@ def _compat_image(filename):
     return image, file_events, file_states
 
 
-def _image_beside(yaml_path):
+def _image_beside(yaml_path: str) -> Image:
     """The image ``x.svm`` for ``x.yaml``, never stale: FileNotFoundError when it is missing,
     ValueError when it records the digest of the YAML file it was packed from (docs/compat.md,
     "Never stale") and the file beside it now has other bytes; both name the two files and

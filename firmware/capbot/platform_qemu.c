@@ -12,7 +12,7 @@
 
 #include <stdio.h>
 
-void svm_harness_write(const char *text, uint16_t length)
+void svm_platform_write(const char *text, uint16_t length)
 {
     (void)fwrite(text, 1, length, stdout);
 }
@@ -29,7 +29,7 @@ void svm_harness_write(const char *text, uint16_t length)
 static uint32_t started;
 static uint32_t overhead;
 
-void svm_harness_timer_start(void)
+void svm_platform_timer_start(void)
 {
     started = SYST_CVR;
 }
@@ -40,7 +40,7 @@ static uint32_t elapsed_instructions(void)
     return (ticks * NS_PER_TICK + NS_PER_INSTRUCTION / 2u) / NS_PER_INSTRUCTION;
 }
 
-uint32_t svm_harness_timer_stop(void)
+uint32_t svm_platform_timer_stop(void)
 {
     return elapsed_instructions() - overhead;
 }
@@ -50,17 +50,23 @@ static void timer_init(void)
     SYST_RVR = SYST_MASK;
     SYST_CVR = 0u;
     SYST_CSR = SYST_ENABLE_CPU_CLOCK;
-    svm_harness_timer_start();
+    svm_platform_timer_start();
     overhead = elapsed_instructions();
 }
 #endif
 
-int main(void)
+int svm_platform_start(void)
 {
     static char buffer[4096];
     (void)setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
 #ifdef SVM_HARNESS_CYCLES
     timer_init();
 #endif
-    return svm_harness_run();
+    return 0;
+}
+
+/* main's return value goes to exit() (startup.c), which flushes stdout. */
+int svm_platform_stop(int status)
+{
+    return status;
 }

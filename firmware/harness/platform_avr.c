@@ -17,7 +17,7 @@
 #include <avr/pgmspace.h>
 #include <avr/sleep.h>
 
-void svm_harness_write(const char *text, uint16_t length)
+void svm_platform_write(const char *text, uint16_t length)
 {
     for (; length != 0u; length--) {
         loop_until_bit_is_set(UCSR0A, UDRE0);
@@ -26,7 +26,7 @@ void svm_harness_write(const char *text, uint16_t length)
 }
 
 #ifdef SVM_HARNESS_EEPROM
-const uint8_t *svm_harness_to_eeprom(const uint8_t *image, uint16_t length)
+const uint8_t *svm_platform_to_eeprom(const uint8_t *image, uint16_t length)
 {
     uint8_t *at = (uint8_t *)(uintptr_t)SVM_KILOBOT_EEPROM_FREE;
     uint16_t i;
@@ -40,12 +40,12 @@ const uint8_t *svm_harness_to_eeprom(const uint8_t *image, uint16_t length)
 #ifdef SVM_HARNESS_CYCLES
 static uint16_t timer_overhead;
 
-void svm_harness_timer_start(void)
+void svm_platform_timer_start(void)
 {
     TCNT1 = 0;
 }
 
-uint32_t svm_harness_timer_stop(void)
+uint32_t svm_platform_timer_stop(void)
 {
     uint16_t now = TCNT1;
     return (uint32_t)(uint16_t)(now - timer_overhead);
@@ -55,12 +55,12 @@ static void timer_init(void)
 {
     TCCR1A = 0;
     TCCR1B = (uint8_t)(1u << CS10);
-    svm_harness_timer_start();
+    svm_platform_timer_start();
     timer_overhead = TCNT1;
 }
 #endif
 
-int main(void)
+int svm_platform_start(void)
 {
     UBRR0H = 0;
     UBRR0L = 0;
@@ -70,10 +70,15 @@ int main(void)
 #ifdef SVM_HARNESS_CYCLES
     timer_init();
 #endif
-    (void)svm_harness_run();
+    return 0;
+}
+
+/* The status is not reported: simavr ends the run at the sleep, and the output says the rest. */
+int svm_platform_stop(int status)
+{
     loop_until_bit_is_set(UCSR0A, TXC0);
     cli();
     sleep_enable();
     sleep_cpu();
-    return 0;
+    return status;
 }

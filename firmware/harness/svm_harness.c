@@ -1,5 +1,5 @@
 /*
- * swarmvm conformance harness, common part (platform interface in svm_harness.h).
+ * swarmvm conformance harness, common part and main() (platform interface in svm_harness.h).
  *
  * One build per supervisor runs every run of its batch: options and seeds are run-time flags
  * of the VM. The event scripts are rows of event masks in program memory; the checks return
@@ -78,7 +78,7 @@ static uint16_t out_used;
 
 static void flush_out(void)
 {
-    svm_harness_write(out, out_used);
+    svm_platform_write(out, out_used);
     out_used = 0;
 }
 
@@ -149,9 +149,9 @@ static void run_all(uint8_t pass)
 #ifdef SVM_HARNESS_CYCLES
             {
                 uint32_t cycles;
-                svm_harness_timer_start();
+                svm_platform_timer_start();
                 (void)svm_step(&vm);
-                cycles = svm_harness_timer_stop();
+                cycles = svm_platform_timer_stop();
                 put_trace_line(step + 1u);
                 put_str(" ~");
                 put_uint(cycles);
@@ -200,7 +200,7 @@ static void run_loaded(void)
 /* Pass 2: the image copied to EEPROM by the platform and loaded from there. */
 static void run_from_eeprom(void)
 {
-    const uint8_t *image = svm_harness_to_eeprom(svm_case_image, SVM_CASES_IMAGE_LEN);
+    const uint8_t *image = svm_platform_to_eeprom(svm_case_image, SVM_CASES_IMAGE_LEN);
     int result = svm_load_E(&vm, image, SVM_CASES_IMAGE_LEN);
     if (result != SVM_OK) {
         put_result("@error ", result);
@@ -210,7 +210,8 @@ static void run_from_eeprom(void)
 }
 #endif
 
-int svm_harness_run(void)
+/* Every run of the batch, every pass; 0 when the image loaded. */
+static int run_batch(void)
 {
     int result;
     svm_init(&vm);
@@ -232,4 +233,13 @@ int svm_harness_run(void)
     put_str("@end");
     end_line();
     return 0;
+}
+
+int main(void)
+{
+    int status = svm_platform_start();
+    if (status == 0) {
+        status = run_batch();
+    }
+    return svm_platform_stop(status);
 }

@@ -1,10 +1,10 @@
 /*
  * swarmvm conformance harness: the platform interface.
  *
- * svm_harness.c (common to every platform) replays the event scripts of one conformance batch
- * (the generated header "svm_cases.h", see tests/conformance/c_harness.py) and prints the
- * canonical trace lines of docs/conformance.md. A platform supplies main(), which calls
- * svm_harness_run() and then stops the machine, and the functions below.
+ * svm_harness.c (common to every platform) holds main(): it replays the event scripts of one
+ * conformance batch (the generated header "svm_cases.h", see tests/conformance/c_harness.py) and
+ * prints the canonical trace lines of docs/conformance.md. A platform file supplies the functions
+ * below and calls nothing of the harness: the dependency runs one way, harness to platform.
  *
  * Output, one line each:
  *   @<pass> <run>        before the trace of run <run>; pass 0 = image compiled in (flash),
@@ -21,23 +21,29 @@
 
 #include <stdint.h>
 
-/* Runs every run of the batch, both passes; returns 0 when the image loaded. */
-int svm_harness_run(void);
+/* Set up output (and the cycle timer) before the batch. Returns 0 to run the batch, or the exit
+ * status to stop with when the platform has nothing to run (having said why on its output). */
+int svm_platform_start(void);
 
-/* Platform: write `length` characters of output (part of a line, or up to its end). The harness
- * collects them a line (or a buffer) at a time: one call, not one per character. */
-void svm_harness_write(const char *text, uint16_t length);
+/* Write `length` characters of output (part of a line, or up to its end). The harness collects
+ * them a line (or a buffer) at a time: one call, not one per character. */
+void svm_platform_write(const char *text, uint16_t length);
+
+/* After the batch: flush the output and stop the machine. `status` is 0 when the image loaded
+ * (nonzero otherwise, or the start's status); the return value becomes main's, on platforms
+ * where main returns. */
+int svm_platform_stop(int status);
 
 #ifdef SVM_HARNESS_EEPROM
-/* Platform: copy a program-memory image into EEPROM; returns its EEPROM address. */
-const uint8_t *svm_harness_to_eeprom(const uint8_t *image, uint16_t length);
+/* Copy a program-memory image into EEPROM; returns its EEPROM address. */
+const uint8_t *svm_platform_to_eeprom(const uint8_t *image, uint16_t length);
 #endif
 
 #ifdef SVM_HARNESS_CYCLES
-/* Platform: start a cycle count / return the cycles since the start (calibrated, so that an
- * empty start-stop pair reads 0). */
-void svm_harness_timer_start(void);
-uint32_t svm_harness_timer_stop(void);
+/* Start a cycle count / return the cycles since the start (calibrated, so that an empty
+ * start-stop pair reads 0). */
+void svm_platform_timer_start(void);
+uint32_t svm_platform_timer_stop(void);
 #endif
 
 #endif /* SVM_HARNESS_H */

@@ -20,6 +20,8 @@ from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
+from ..naming import KILOBOT_MESSAGE_BYTES
+
 SOURCE = resources.files(__name__) / "kilobot_board.c"
 SIMAVR_INCLUDE = Path("/usr/include/simavr")
 RUN = 0x88              # kilolib message.h: the overhead controller's "run the program"
@@ -141,8 +143,9 @@ def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: 
     elf = Path(elf)
     with tempfile.TemporaryDirectory() as work:
         schedule = Path(work) / "schedule"
-        rows = [(start_tick, RUN, bytes(9))] + sorted(messages, key=lambda m: m[0])
-        schedule.write_text("".join("%d %02x %s\n" % (t, k, bytes(d).ljust(9, b"\0").hex()) for t, k, d in rows))
+        rows = [(start_tick, RUN, bytes(KILOBOT_MESSAGE_BYTES))] + sorted(messages, key=lambda m: m[0])
+        schedule.write_text("".join("%d %02x %s\n" % (t, k, bytes(d).ljust(KILOBOT_MESSAGE_BYTES, b"\0").hex())
+                                    for t, k, d in rows))
         command = [str(board_path()), "-m", str(schedule), "-E", str(Path(work) / "eeprom.out")]
         if ticks is not None:
             command += ["-t", str(sram_symbol(elf, "kilo_ticks")), "-n", str(ticks)]

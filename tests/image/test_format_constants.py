@@ -6,8 +6,8 @@ regular expressions (which miss a value spelled another way, an ``#if`` around i
 definition), each test here compiles a small program that includes the header and prints every
 constant as the compiler evaluated it, then compares the printout with the Python definition:
 version, magic, header size and each field's offset, flags, limits, result codes, stream chunk
-sizes, the Q15 one, the seeds and the violation counter's stop. The two numbers swarmvm.c keeps
-to itself (Q15 one and the seed that replaces 0) are read from what the VM does with them."""
+sizes, the Q15 one, the seeds and the violation counter's stop. The Q15 one and the seed that
+replaces 0 are also read from what the VM does with them (swarmvm.c uses the header's)."""
 
 import subprocess
 
@@ -36,11 +36,12 @@ def c_expected():
     values = {"SVM_" + name: value for name, value in _image_constants().items()}
     values.update({"SVM_FORMAT_MAX_EVENTS": F.MAX_EVENTS, "SVM_FORMAT_MAX_SUPERVISORS": F.MAX_SUPERVISORS,
                    "SVM_FORMAT_MAX_STATES": F.MAX_STATES, "SVM_MAX_VIOLATIONS": VM.MAX_VIOLATIONS,
-                   "SVM_DEFAULT_SEED": VM.XorShift32().state, "SVM_CRC16_INIT": F.crc16(b""),
+                   "SVM_DEFAULT_SEED": VM.XorShift32().state, "SVM_ZERO_SEED": VM.XorShift32(0).state,
+                   "SVM_Q15_ONE": F.Q15_ONE, "SVM_CRC16_INIT": F.crc16(b""),
                    "SVM_CHUNK_DATA": F.STREAM_CHUNK_DATA, "SVM_CHUNK_BYTES": 1 + F.STREAM_CHUNK_DATA})
     values.update({"SVM_OK" if code == 0 else "SVM_ERR_" + code.name: int(code) for code in F.ErrorCode})
-    # swarmvm.c's own: every event weighs one in an image without probabilities, and seed 0
-    # starts the generator from the replacing seed (its first draw is compared).
+    # What the VM does with them: every event weighs one in an image without probabilities, and
+    # seed 0 starts the generator from the replacing seed (its first draw is compared).
     values["svm_weight(&vm, 0)"] = F.Q15_ONE
     values["first_draw_of_seed_0(&vm)"] = VM.XorShift32(0).next()
     return values

@@ -8,6 +8,7 @@ import subprocess
 import sys
 import textwrap
 
+from c_calls import call_graph
 from imports import ROOT, cycles, import_graph, imported_names, module_files
 
 # What the studies may import from the compiler: the typed API and the mechanisms every caller
@@ -32,6 +33,34 @@ def test_the_tree_has_no_import_cycle():
 
 def test_the_cycle_finder_finds_a_cycle():
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+# The C sources whose calls form the graph: the firmware (harnesses, QEMU boards) and the C
+# runtime it links with.
+C_FOLDERS = ("firmware", "runtime_c")
+
+
+def test_no_two_c_files_call_each_other():
+    files = sorted(path for folder in C_FOLDERS for path in (ROOT / folder).rglob("*.c"))
+    graph = call_graph(files, ROOT)
+    assert cycles(graph) == []
+    assert "firmware/harness/platform_host.c" in graph["firmware/harness/svm_harness.c"]
+
+
+def test_the_c_call_reader_finds_a_cycle(tmp_path):
+    """A harness whose run the platform calls, and which calls the platform's output: the shape
+    the conformance harness had. Static functions, prototypes, comments and strings are no calls."""
+    (tmp_path / "harness.c").write_text(
+        "void write_out(const char *text);\n"
+        "int run(void)\n{\n    write_out(\"done()\");\n    return 0;\n}\n")
+    (tmp_path / "platform.c").write_text(
+        "int run(void);\nstatic int helper(void) { return 1; }\n"
+        "void write_out(const char *text)\n{\n    (void)text; /* run() */\n}\n"
+        "int main(void)\n{\n    return run() + helper();\n}\n")
+    (tmp_path / "other.c").write_text("static int write_out(void) { return 0; }\nint done(void) { return write_out(); }\n")
+    graph = call_graph(sorted(tmp_path.glob("*.c")), tmp_path)
+    assert graph == {"harness.c": {"platform.c"}, "platform.c": {"harness.c"}, "other.c": set()}
+    assert cycles(graph) == [["harness.c", "platform.c"]]
 
 
 def test_the_studies_import_only_the_public_api():

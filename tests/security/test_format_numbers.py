@@ -49,11 +49,6 @@ ALLOWED = {
     ("footprint_cycles.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
     ("kilobot_board/__init__.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
     ("errors.py", 9): (1, "ascii_int's default: 9 digits always fit an int without a big-number parse"),
-    # Retyped copies in files of other owners (issue 28), left for them: each should import its number.
-    ("kilobot_board/__init__.py", 9): (2, "TO FIX: kilolib's payload, naming.KILOBOT_MESSAGE_BYTES"),
-    ("read_gen.py", 65536): (1, "TO FIX: MAX_CONSECUTIVE, 'more states than any image can hold': MAX_STATES + 1"),
-    ("pipeline.py", 255): (1, "TO FIX: a source-section name's length, the format's MAX_NAME_LENGTH"),
-    ("automaton.py", 255): (1, "TO FIX: 'at most 255 letters' in a message, the format's MAX_NAME_LENGTH"),
 }
 
 JINJA = re.compile(r"\{\{.*?\}\}|\{%.*?%\}", re.S)

@@ -13,6 +13,7 @@
  *
  * Output: "@page <code>" (svm_validate of the page, 0 = runs it), then firmware/harness/'s
  * lines (svm_harness.h); "@cases" and exit status 3 when the blob is missing or too wide.
+ * This file is the harness's platform (svm_harness.h); main() is the harness's.
  */
 #include "swarmvm_logic_page.h"
 #include "svm_cases.h"
@@ -30,7 +31,7 @@
 
 struct page_batch page_batch;
 
-void svm_harness_write(const char *text, uint16_t length)
+void svm_platform_write(const char *text, uint16_t length)
 {
     (void)fwrite(text, 1, length, stdout);
 }
@@ -57,7 +58,8 @@ static int read_cases(void)
     return 1;
 }
 
-int main(void)
+/* The batch's image (the page's or the fallback) and scripts; 3 when there are no scripts. */
+int svm_platform_start(void)
 {
     static char buffer[4096];
     int page = svm_logic_page_validate();
@@ -74,5 +76,11 @@ int main(void)
         printf("@cases\n");
         return 3;
     }
-    return svm_harness_run();
+    return 0;
+}
+
+/* main's return value goes to exit() (startup.c), which flushes stdout. */
+int svm_platform_stop(int status)
+{
+    return status;
 }
