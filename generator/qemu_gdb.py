@@ -72,7 +72,10 @@ class QemuGdb:
 
     def _send(self, packet: str) -> None:
         body = packet.encode()
-        self.socket.sendall(b"$%s#%02x" % (body, sum(body) % 256))
+        try:
+            self.socket.sendall(b"$%s#%02x" % (body, sum(body) % 256))
+        except OSError:
+            raise QemuGdbError("QEMU closed its GDB stub: %s" % self.output().strip())
 
     def _receive(self) -> str:
         """The next packet's body (its ``+`` ack sent); acks and notifications before it dropped."""
@@ -81,7 +84,12 @@ class QemuGdb:
             end = self._pending.find(b"#", start + 1) if start >= 0 else -1
             if start >= 0 and end >= 0 and len(self._pending) >= end + 3:
                 body, self._pending = self._pending[start + 1:end], self._pending[end + 3:]
-                self.socket.sendall(b"+")
+                try:
+                    self.socket.sendall(b"+")
+                except OSError:
+                    # After its exit report (W, X) QEMU may be gone before the ack arrives.
+                    if not body.startswith((b"W", b"X")):
+                        raise QemuGdbError("QEMU closed its GDB stub: %s" % self.output().strip())
                 return body.decode()
             try:
                 data = self.socket.recv(4096)

@@ -9,7 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-from checkout import ROOT
+from checkout import EXAMPLE, ROOT
+from swarmvm import api
 
 NAMES = ("energy_worker", "network_worker")
 BALLAST_FLASH, BALLAST_RAM = 600, 100
@@ -101,3 +102,17 @@ def elf(build: Path, target: str, name: str) -> Path:
 
 def swarmvm_footprint(*args, cwd=None) -> subprocess.CompletedProcess:
     return subprocess.run(["swarmvm", "footprint", *map(str, args)], capture_output=True, text=True, cwd=cwd)
+
+
+def event_script(tmp_path: Path, lines) -> Path:
+    """An event script of ``lines`` (one step each) for ``footprint --cycles``."""
+    path = tmp_path / "events.txt"
+    path.write_text("# swarmvm event script\n" + "".join(line + "\n" for line in lines))
+    return path
+
+
+def random_event_script(tmp_path: Path, steps: int = 12, seed: int = 3) -> Path:
+    """A random event script of the bundled example's events."""
+    path = tmp_path / "random.txt"
+    path.write_text("".join(line + "\n" for line in api.script_lines([str(EXAMPLE)], steps=steps, seed=seed)))
+    return path

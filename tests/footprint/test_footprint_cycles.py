@@ -10,7 +10,7 @@ import sys
 import pytest
 
 from checkout import EXAMPLE, FIRMWARE
-from footprint_images import KILOBOT_INDIRECT, SLOWER_LOOPS, swarmvm_footprint
+from footprint_images import KILOBOT_INDIRECT, SLOWER_LOOPS, event_script, random_event_script, swarmvm_footprint
 
 from swarmvm import api
 
@@ -31,25 +31,13 @@ def example(build):
     return build / "kilobot" / "gen" / "energy_worker" / "energy_worker.elf"
 
 
-def script(tmp_path, lines):
-    path = tmp_path / "events.txt"
-    path.write_text("# swarmvm event script\n" + "".join(line + "\n" for line in lines))
-    return path
-
-
-def random_script(tmp_path, steps=12, seed=3):
-    path = tmp_path / "random.txt"
-    path.write_text("".join(line + "\n" for line in api.script_lines([str(SUPERVISOR)], steps=steps, seed=seed)))
-    return path
-
-
 def cycles_of(elf_path, script_path, indirect=KILOBOT_INDIRECT):
     (footprint,) = api.measure_footprint([str(elf_path)], indirect=list(indirect), cycles=str(script_path))
     return footprint.cycles
 
 
 def test_counts_are_the_same_on_every_run(build, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     first, second = cycles_of(example(build), events), cycles_of(example(build), events)
     assert len(first.per_step) == 12
     assert first.per_step == second.per_step
@@ -58,15 +46,15 @@ def test_counts_are_the_same_on_every_run(build, tmp_path):
 
 def test_the_checks_answer_from_the_script(build, tmp_path):
     """Nothing occurring and everything occurring are different steps; the worst is named."""
-    quiet = cycles_of(example(build), script(tmp_path, ["-"] * 4))
-    busy = cycles_of(example(build), script(tmp_path, ["EV_atCharger EV_notAtWork EV_lowEnergy"] * 4))
+    quiet = cycles_of(example(build), event_script(tmp_path, ["-"] * 4))
+    busy = cycles_of(example(build), event_script(tmp_path, ["EV_atCharger EV_notAtWork EV_lowEnergy"] * 4))
     assert quiet.per_step != busy.per_step
     assert busy.worst_inputs == ("EV_atCharger", "EV_lowEnergy", "EV_notAtWork")
     assert quiet.worst_inputs == ()
 
 
 def test_the_report_has_mean_and_worst_and_names_the_worst_step(build, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     result = swarmvm_footprint(example(build), *INDIRECT, "--cycles", events, "--json", tmp_path / "r.json", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     image = json.loads((tmp_path / "r.json").read_text())["images"][0]
@@ -81,7 +69,7 @@ def test_the_report_has_mean_and_worst_and_names_the_worst_step(build, tmp_path)
 
 
 def test_a_slower_step_is_caught_by_a_cycles_budget(build, slower, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     normal = cycles_of(example(build), events)
     (tmp_path / "budget.toml").write_text("[kilobot]\ncycles = %d\n" % normal.worst)
     ok = swarmvm_footprint(example(build), *INDIRECT, "--cycles", events, "--budget", "budget.toml", cwd=tmp_path)
@@ -98,7 +86,7 @@ def test_a_slower_step_is_caught_by_a_cycles_budget(build, slower, tmp_path):
 
 
 def test_a_slower_step_shows_in_the_delta(build, slower, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     base = swarmvm_footprint(example(build), *INDIRECT, "--cycles", events, "--json", "base.json", cwd=tmp_path)
     assert base.returncode == 0, base.stderr
     grown = swarmvm_footprint(slower, *INDIRECT, "--cycles", events, "--baseline", "base.json", "--fail-on-growth",
@@ -108,13 +96,13 @@ def test_a_slower_step_shows_in_the_delta(build, slower, tmp_path):
 
 
 def test_without_the_dispatch_declared_the_command_says_so(build, tmp_path):
-    result = swarmvm_footprint(example(build), "--cycles", random_script(tmp_path), cwd=tmp_path)
+    result = swarmvm_footprint(example(build), "--cycles", random_event_script(tmp_path), cwd=tmp_path)
     assert result.returncode == 2
     assert "--indirect svm_step=" in result.stderr and len(result.stderr.splitlines()) == 1
 
 
 def test_a_script_naming_an_unknown_event_is_bad_input(build, tmp_path):
-    result = swarmvm_footprint(example(build), *INDIRECT, "--cycles", script(tmp_path, ["EV_nowhere"]), cwd=tmp_path)
+    result = swarmvm_footprint(example(build), *INDIRECT, "--cycles", event_script(tmp_path, ["EV_nowhere"]), cwd=tmp_path)
     assert result.returncode == 2
     assert result.stderr.startswith("swarmvm: error: ") and "EV_nowhere" in result.stderr
 

@@ -11,7 +11,7 @@ import pytest
 
 import capbot_images
 from checkout import EXAMPLE
-from footprint_images import swarmvm_footprint
+from footprint_images import event_script, random_event_script, swarmvm_footprint
 
 from swarmvm import api
 
@@ -23,25 +23,13 @@ def slower(build, tmp_path_factory):
     return capbot_images.rebuilt(build, tmp_path_factory.mktemp("capbot-slower"), capbot_images.SLOWER)
 
 
-def script(tmp_path, lines):
-    path = tmp_path / "events.txt"
-    path.write_text("# swarmvm event script\n" + "".join(line + "\n" for line in lines))
-    return path
-
-
-def random_script(tmp_path, steps=12, seed=3):
-    path = tmp_path / "random.txt"
-    path.write_text("".join(line + "\n" for line in api.script_lines([str(EXAMPLE)], steps=steps, seed=seed)))
-    return path
-
-
 def cycles_of(elf_path, script_path):
     (footprint,) = api.measure_footprint([str(elf_path)], indirect=[DISPATCH], cycles=str(script_path))
     return footprint.cycles
 
 
 def test_counts_are_the_same_on_every_run(build, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     first, second = cycles_of(capbot_images.example(build), events), cycles_of(capbot_images.example(build), events)
     assert len(first.per_step) == 12
     assert first.per_step == second.per_step
@@ -49,15 +37,15 @@ def test_counts_are_the_same_on_every_run(build, tmp_path):
 
 
 def test_the_checks_answer_from_the_script(build, tmp_path):
-    quiet = cycles_of(capbot_images.example(build), script(tmp_path, ["-"] * 4))
-    busy = cycles_of(capbot_images.example(build), script(tmp_path, ["EV_atCharger EV_notAtWork EV_lowEnergy"] * 4))
+    quiet = cycles_of(capbot_images.example(build), event_script(tmp_path, ["-"] * 4))
+    busy = cycles_of(capbot_images.example(build), event_script(tmp_path, ["EV_atCharger EV_notAtWork EV_lowEnergy"] * 4))
     assert quiet.per_step != busy.per_step
     assert busy.worst_inputs == ("EV_atCharger", "EV_lowEnergy", "EV_notAtWork")
     assert quiet.worst_inputs == ()
 
 
 def test_a_slower_step_is_caught_by_a_cycles_budget(build, slower, tmp_path):
-    events = random_script(tmp_path)
+    events = random_event_script(tmp_path)
     normal = cycles_of(capbot_images.example(build), events)
     (tmp_path / "budget.toml").write_text("[capbot]\ncycles = %d\n" % normal.worst)
     ok = swarmvm_footprint(capbot_images.example(build), "--indirect", DISPATCH, "--cycles", events, "--budget", "budget.toml",
@@ -73,7 +61,7 @@ def test_a_slower_step_is_caught_by_a_cycles_budget(build, slower, tmp_path):
 
 def test_a_script_longer_than_the_run_is_refused(build, tmp_path):
     """The bare-metal application steps the VM 20 times (app_qemu.c, SVM_APP_STEPS), then exits."""
-    result = swarmvm_footprint(capbot_images.example(build), "--indirect", DISPATCH, "--cycles", script(tmp_path, ["-"] * 21),
+    result = swarmvm_footprint(capbot_images.example(build), "--indirect", DISPATCH, "--cycles", event_script(tmp_path, ["-"] * 21),
                                cwd=tmp_path)
     assert result.returncode == 2
     assert result.stderr.endswith("energy_worker.elf: 20 of the script's 21 steps ran before the program ended "
