@@ -1,7 +1,19 @@
 """Building blocks of the C++ conformance harness (runtime_cpp/conformance_harness.cpp), shared
 by its test (test_cpp.py) and by `make emulate` (firmware/emulate_example.py)."""
 
+import subprocess
+from pathlib import Path
+
+from swarmvm.runtime import RUNTIME_CPP
+
 FLAGS = ["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
+
+
+def build_program(source: Path, exe: Path, *extra: str) -> Path:
+    """``source``, a test program of the C++ runtime, built with g++ and the project's flags."""
+    subprocess.run(["g++", *FLAGS, *extra, "-I", str(RUNTIME_CPP), str(source), "-o", str(exe)], check=True,
+                   capture_output=True)
+    return exe
 
 
 def c_array(name, data):

@@ -8,9 +8,8 @@ from pathlib import Path
 
 from checkout import EXAMPLE
 from conformance.cases import HOOKED
-from conformance.cpp_harness import FLAGS
+from conformance.cpp_harness import build_program
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP
 
 PROGRAM = Path(__file__).resolve().parent / "callback_errors.cpp"
 
@@ -21,8 +20,7 @@ def test_throwing_callbacks_follow_the_python_policy(tmp_path):
     hooked = tmp_path / "hooked.yaml"
     hooked.write_text(HOOKED)
     (tmp_path / "hooked.svm").write_bytes(compile_inputs([str(hooked)]).image)
-    subprocess.run(["g++", *FLAGS, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
-                   capture_output=True)
+    build_program(PROGRAM, exe)
     lines = subprocess.run([str(exe), str(image), str(tmp_path / "hooked.svm")], check=True, capture_output=True, text=True,
                            timeout=30).stdout.splitlines()
     assert lines == [

@@ -13,9 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from conformance.cpp_harness import FLAGS
+from conformance.cpp_harness import build_program
 from swarmvm import api
-from swarmvm.runtime import RUNTIME_CPP
 
 PROGRAM = Path(__file__).resolve().parent / "stale_image.cpp"
 # One supervisor of three states that starts (sup_current_state) in its second: the published
@@ -34,10 +33,7 @@ sup_data: [ 1, EV_go, 0, 1, 1, EV_go, 0, 2, 1, EV_stop, 0, 0 ]
 
 @pytest.fixture(scope="module")
 def program(tmp_path_factory):
-    exe = tmp_path_factory.mktemp("stale_image") / "stale_image"
-    subprocess.run(["g++", *FLAGS, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
-                   capture_output=True)
-    return exe
+    return build_program(PROGRAM, tmp_path_factory.mktemp("stale_image") / "stale_image")
 
 
 def run(program, verb, *paths):

@@ -9,9 +9,8 @@ from pathlib import Path
 import pytest
 
 from conformance.cases import SUPERVISORS
-from conformance.cpp_harness import FLAGS
+from conformance.cpp_harness import build_program
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP
 
 PROGRAM = Path(__file__).resolve().parent / "step_paths.cpp"
 OPTIONS = ["%s %s %s" % (i, c, p) for i in ("level", "edge") for c in ("after-inputs", "if-quiet")
@@ -20,10 +19,7 @@ OPTIONS = ["%s %s %s" % (i, c, p) for i in ("level", "edge") for c in ("after-in
 
 @pytest.fixture(scope="module")
 def step_paths(tmp_path_factory):
-    exe = tmp_path_factory.mktemp("step_paths") / "step_paths"
-    subprocess.run(["g++", *FLAGS, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
-                   capture_output=True)
-    return exe
+    return build_program(PROGRAM, tmp_path_factory.mktemp("step_paths") / "step_paths")
 
 
 @pytest.mark.parametrize("supervisor", SUPERVISORS, ids=lambda path: Path(path).stem)

@@ -9,9 +9,9 @@ import subprocess
 from pathlib import Path
 
 from conformance.cases import SWAP_FIRST, SWAP_SECOND
-from conformance.cpp_harness import FLAGS
+from conformance.cpp_harness import build_program
 from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP, python_vm
+from swarmvm.runtime import python_vm
 
 PROGRAM = Path(__file__).resolve().parent / "swap_mid_step.cpp"
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g"]
@@ -47,8 +47,7 @@ def test_an_action_that_loads_ends_the_step_alike_in_cpp_and_python(tmp_path):
     (tmp_path / "first.svm").write_bytes(first)
     (tmp_path / "second.svm").write_bytes(second)
     exe = tmp_path / "swap_mid_step"
-    subprocess.run(["g++", *FLAGS, *SANITIZE, "-I", str(RUNTIME_CPP), str(PROGRAM), "-o", str(exe)], check=True,
-                   capture_output=True)
+    build_program(PROGRAM, exe, *SANITIZE)
     run = subprocess.run([str(exe), str(tmp_path / "first.svm"), str(tmp_path / "second.svm")],
                          capture_output=True, text=True, timeout=60)
     assert run.returncode == 0 and run.stderr == "", run.stderr
