@@ -148,12 +148,13 @@ def main(argv: list[str] | None = None) -> int:
     unknown = sorted(set(chosen) - set(modules))
     if unknown:
         parser.error("not a module of %s: %s" % (CONFIG.relative_to(ROOT), ", ".join(unknown)))
-    args.work.mkdir(parents=True, exist_ok=True)
-    tree = copy_tree(args.work)
-    env = environment(args.work, tree)
+    work = args.work.resolve()      # absolute: cosmic-ray runs in the copy, not where --work was given
+    work.mkdir(parents=True, exist_ok=True)
+    tree = copy_tree(work)
+    env = environment(work, tree)
     for module in chosen:
-        run_module(module, modules[module]["tests"], config["operators"]["kept"], args.work, tree, env)
-    report = subprocess.run([sys.executable, str(ROOT / "scripts" / "mutation_report.py"), str(args.work),
+        run_module(module, modules[module]["tests"], config["operators"]["kept"], work, tree, env)
+    report = subprocess.run([sys.executable, str(ROOT / "scripts" / "mutation_report.py"), str(work),
                              "--equivalents", str(ROOT / "tests" / "mutation" / "equivalents.toml")])
     return report.returncode
 

@@ -80,3 +80,16 @@ def test_the_runner_reads_cosmic_rays_dump():
     assert [(m["operator"], m["outcome"]) for m in mutants] == [
         ("core/NumberReplacer", "killed"), ("core/NumberReplacer", "timeout"), ("core/ReplaceTrueWithFalse", "survived")]
     assert {(m["text"], m["mutated"], m["line"], m["column"]) for m in mutants} == {("x = 1", "x = 2", 2, 4)}
+
+
+def test_the_runner_gives_cosmic_ray_absolute_paths_when_work_is_relative(tmp_path, monkeypatch):
+    """cosmic-ray runs in the copy's folder: a relative --work (make's build/mutation) must reach it
+    resolved, or its config and session are looked for under the copy."""
+    seen = []
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(mutation, "copy_tree", lambda work: work / "tree")
+    monkeypatch.setattr(mutation, "environment", lambda work, tree: {})
+    monkeypatch.setattr(mutation, "run_module", lambda module, tests, kept, work, tree, env: seen.append((work, tree)))
+    monkeypatch.setattr(mutation.subprocess, "run", lambda *args, **kwargs: type("Run", (), {"returncode": 0}))
+    assert mutation.main(["--work", "build/mutation", "--module", "generator/naming.py"]) == 0
+    assert seen == [(tmp_path / "build" / "mutation", tmp_path / "build" / "mutation" / "tree")]
