@@ -1685,6 +1685,16 @@ struct Registration {
     bool (*check)(const Registration&, void*) = nullptr;
     void* data = nullptr;
 
+    // What one add_callback registers: an action, a check, or both (nullptr for the one not given).
+    template <class C, class A, class K>
+    static Registration of(C* p, A action, K check, void* data) {
+        Registration r;
+        if constexpr (!std::is_null_pointer<A>::value) r.set_action(p, action);
+        if constexpr (!std::is_null_pointer<K>::value) r.set_check(p, check);
+        r.data = data;
+        return r;
+    }
+
     template <class C>
     void set_action(C* p, void (C::*method)(void*)) {
         object = p;
@@ -2147,10 +2157,7 @@ public:
     void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), void* /*no check*/, void* data) {
         const unsigned e = index(event);
         if (step_ != Step::canonical) {
-            detail::Registration r;
-            r.set_action(p, clbk);
-            r.data = data;
-            published_.set_registration(e, r);
+            published_.set_registration(e, detail::Registration::of(p, clbk, nullptr, data));
             return;
         }
         vm_.bind(e, member(p, clbk), typename BasicVM<Rng>::Check(), data);
@@ -2161,10 +2168,7 @@ public:
     void add_callback(C* p, const std::string& event, void* /*no action*/, R (C::*ci)(void*), void* data) {
         const unsigned e = index(event);
         if (step_ != Step::canonical) {
-            detail::Registration r;
-            r.set_check(p, ci);
-            r.data = data;
-            published_.set_registration(e, r);
+            published_.set_registration(e, detail::Registration::of(p, nullptr, ci, data));
             return;
         }
         refuse_check_on_controllable(event, e);
@@ -2178,11 +2182,7 @@ public:
     void add_callback(C* p, const std::string& event, void (C::*clbk)(void*), R (C::*ci)(void*), void* data) {
         const unsigned e = index(event);
         if (step_ != Step::canonical) {
-            detail::Registration r;
-            r.set_action(p, clbk);
-            r.set_check(p, ci);
-            r.data = data;
-            published_.set_registration(e, r);
+            published_.set_registration(e, detail::Registration::of(p, clbk, ci, data));
             return;
         }
         vm_.bind(e, member(p, clbk), typename BasicVM<Rng>::Check(), data);

@@ -94,14 +94,6 @@ def test_a_tag_in_the_alphabet_is_refused_naming_it(tmp_path):
         "Alphabet: line 1: unexpected '<Consecutive>'"
 
 
-def test_a_gen_file_not_in_utf8_is_refused_naming_the_byte(tmp_path):
-    path = tmp_path / "g.gen"
-    path.write_bytes(b"<Generator> \xff")
-    with pytest.raises(InputError) as refused:
-        load_gen(str(path))
-    assert str(refused.value) == "%s: not UTF-8 text (byte 12)" % path
-
-
 def test_any_quoted_generator_name_is_skipped_and_a_transitions_attribute_ignored(tmp_path):
     """The old style's name is a string, even one spelled like a closing tag; +P+ after a triple
     is one of the attribute flags accepted and ignored."""

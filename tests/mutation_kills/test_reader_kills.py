@@ -5,6 +5,7 @@ attribute, and an .nza event without ``shared`` private, one with it public."""
 import pytest
 
 from swarmvm.errors import InputError
+from swarmvm.read_gen import load_gen
 from swarmvm.read_nza import load_nza
 from swarmvm.read_xmd import load_xmd
 
@@ -38,12 +39,14 @@ def test_an_nza_state_is_neither_initial_nor_marked_unless_it_says_so(tmp_path):
     assert supervisor.initial == 0 and supervisor.marked == frozenset({0}) and len(supervisor.states) == 2
 
 
-def test_an_nza_file_not_in_utf8_is_refused_naming_the_byte(tmp_path):
-    path = tmp_path / "g.nza"
-    path.write_bytes(b"{ \xff }")
+@pytest.mark.parametrize("name, data, load, byte", [("g.nza", b"{ \xff }", load_nza, 2),
+                                                    ("g.gen", b"<Generator> \xff", load_gen, 12)])
+def test_a_file_not_in_utf8_is_refused_naming_the_byte(tmp_path, name, data, load, byte):
+    path = tmp_path / name
+    path.write_bytes(data)
     with pytest.raises(InputError) as refused:
-        load_nza(str(path))
-    assert str(refused.value) == "%s: not UTF-8 text (byte 2)" % path
+        load(str(path))
+    assert str(refused.value) == "%s: not UTF-8 text (byte %d)" % (path, byte)
 
 
 def test_an_nza_list_entry_that_is_not_a_table_is_refused_naming_it(tmp_path):
