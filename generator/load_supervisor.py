@@ -99,14 +99,15 @@ class _Reader:
         raise InputError(self.path, key, message, where)
 
     def int(self, value: object, key: str, where: str = "", low: int = 0, high: Optional[int] = None) -> int:
+        """The non-negative integer ``value`` spells, in low..high when ``high`` is given (digits
+        never spell a number under 0, so ``low`` is only checked with it)."""
         if not isinstance(value, str) or not INTEGER.match(value):
             self.fail(key, "expected a non-negative integer, got %s" % show_value(value), where)
         number: Optional[int] = ascii_int(value.lstrip("0") or "0")
         if number is None:
             self.fail(key, "value of %d digits out of range" % len(value), where)
-        if number < low or (high is not None and number > high):
-            bound = "at least %d" % low if high is None else "in %d..%d" % (low, high)
-            self.fail(key, "value %d out of range (must be %s)" % (number, bound), where)
+        if high is not None and not low <= number <= high:
+            self.fail(key, "value %d out of range (must be in %d..%d)" % (number, low, high), where)
         return number
 
     # (``int`` and ``list`` name the methods above in the class body: the builtins are spelled out.)
@@ -171,7 +172,7 @@ def load_supervisor(path: str, published: bool = False) -> Supervisors:
     return spec
 
 
-def _parse(r: _Reader, published: bool = False) -> Supervisors:
+def _parse(r: _Reader, published: bool) -> Supervisors:
     doc = r.doc
     for key in REQUIRED:
         if key not in doc:
@@ -316,10 +317,11 @@ def _parse_block(r: _Reader, data: Sequence[object], start: int, end: int, s: in
 def _parse_probabilities(r: _Reader, supervisors: Sequence[Sequence[Sequence[Transition]]],
                          controllable: Sequence[bool], index: Mapping[str, int], n_sups: int) -> None:
     """Nadzoru 2's probabilistic keys: per state ``k, p_1..p_k`` for its k controllable
-    out-transitions in sup_data order. Probabilities are read exactly (as fractions)."""
-    positions = [r.int(v, "sup_data_prob_pos[%d]" % s, "supervisor %d" % s)
-                 for s, v in enumerate(r.list("sup_data_prob_pos", n_sups, "num_supervisors"))]
+    out-transitions in sup_data order. Probabilities are read exactly (as fractions). A position
+    past the end of sup_data_prob is refused: a block runs to the next position, read entry by entry."""
     data = r.list("sup_data_prob")
+    positions = [r.int(v, "sup_data_prob_pos[%d]" % s, "supervisor %d" % s, high=len(data))
+                 for s, v in enumerate(r.list("sup_data_prob_pos", n_sups, "num_supervisors"))]
     for s, states in enumerate(supervisors):
         pos = positions[s]
         end = positions[s + 1] if s + 1 < n_sups else len(data)

@@ -57,9 +57,9 @@ def _sections(path: str, tokens: List[Token]) -> Dict[str, List[Token]]:
         raise InputError(path, "Generator", "expected <Generator> at the top")
     body: Dict[str, List[Token]] = {}
     i = 1
-    if i < len(tokens) and tokens[i][0] == "word" and tokens[i][1] not in SECTIONS:
+    if i < len(tokens) and tokens[i][0] == "word":
         i += 1                                   # old style: the generator's name as a string
-    while i < len(tokens) and tokens[i][1] != "</Generator>":
+    while i < len(tokens) and tokens[i][:2] != ("tag", "</Generator>"):
         kind, value, line = tokens[i]
         tag = re.match(r"<([A-Za-z]+)", value) if kind == "tag" and not value.startswith("</") else None
         name = tag.group(1) if tag else None
@@ -71,7 +71,7 @@ def _sections(path: str, tokens: List[Token]) -> Dict[str, List[Token]]:
         if value.endswith("/>"):
             body[name], i = [], i + 1
             continue
-        end = next((j for j in range(i + 1, len(tokens)) if tokens[j][1] == "</%s>" % name), None)
+        end = next((j for j in range(i + 1, len(tokens)) if tokens[j][:2] == ("tag", "</%s>" % name)), None)
         if end is None:
             raise InputError(path, name, "section is not closed", "line %d" % line)
         body[name], i = tokens[i + 1:end], end + 1

@@ -13,3 +13,19 @@ MUTATION_MODULES ?=
 mutation: setup
 	$(PYTHON) -c "import cosmic_ray" 2>/dev/null || $(PYTHON) -m pip install -q -e '.[mutation]'
 	nice -n 10 $(PYTHON) scripts/mutation.py --work $(MUTATION_DIR) $(foreach m,$(MUTATION_MODULES),--module $(m))
+
+# `make mutation-c`: the same for the C runtime, runtime_c/swarmvm.c (scripts/mutation_c.py: its
+# own mutants, judged by the quick host tests that compile it), in $(MUTATION_C_DIR); resumes an
+# interrupted run. MUTATION_C_EVERY=K runs a 1-in-K sample. `make mutation-report` rewrites
+# $(MUTATION_DIR)/report.md with the C runtime's row beside the Python modules'.
+
+MUTATION_C_DIR ?= $(BUILD)/mutation-c
+MUTATION_C_EVERY ?= 1
+
+.PHONY: mutation-c mutation-report
+
+mutation-c: setup
+	nice -n 10 $(PYTHON) scripts/mutation_c.py --work $(MUTATION_C_DIR) --every $(MUTATION_C_EVERY)
+
+mutation-report: setup
+	$(PYTHON) scripts/mutation_report.py $(MUTATION_DIR) --also $(MUTATION_C_DIR) --equivalents tests/mutation/equivalents.toml

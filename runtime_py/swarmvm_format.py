@@ -93,8 +93,10 @@ STREAM_CHUNK_DATA = 8
 STREAM_MAX_CHUNKS = 0x100
 
 
+@enum.unique
 class ErrorCode(enum.IntEnum):
-    """Result codes, numbered as swarmvm.h's ``svm_result`` (SVM_OK, SVM_ERR_<NAME>).
+    """Result codes, numbered as swarmvm.h's ``svm_result`` (SVM_OK, SVM_ERR_<NAME>); unique, so that
+    two codes given one number fail at import rather than one hiding as the other's alias.
 
     A reader refuses an image with the first of LENGTH .. LAYOUT that applies, in this order;
     LIMITS is a C build's compile-time maxima; the others come from C API calls, not images."""

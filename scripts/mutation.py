@@ -7,13 +7,20 @@ no venv, no caches) and a package folder WORK/site/swarmvm is made of links into
 as the installed package is (pyproject.toml's package-dir), first on PYTHONPATH, so that the tests
 import the copy, the mutated file included, and never the editable install's checkout.
 
-Modules, their tests and the operators used are in tests/mutation/modules.toml."""
+Modules, their tests and the operators used are in tests/mutation/modules.toml.
+
+``--survivors`` re-runs only the mutants that survived a module's last session in WORK (the loop
+of writing kill tests: minutes instead of an hour), the others keeping their outcome: a mutant the
+tests killed stays killed as tests are added. It is refused when the module's text changed since
+that session (its SHA-256 is kept beside it), since its mutants would no longer be the same."""
 
 import argparse
+import hashlib
 import json
 import os
 import shlex
 import shutil
+import sqlite3
 import subprocess
 import sys
 import time
@@ -83,23 +90,42 @@ def baseline(command: str, tree: Path, env: dict[str, str]) -> float:
     return time.monotonic() - started
 
 
-def run_module(module: str, tests: list[str], kept: list[str], work: Path, tree: Path, env: dict[str, str]) -> None:
-    """Init, filter and execute one module's cosmic-ray session, then record its mutants as
-    WORK/<slug>.mutants.json (scripts/mutation_report.py's input)."""
-    command = test_command(tests)
-    took = baseline(command, tree, env)
+def forget_survivors(session: Path) -> int:
+    """Drop the results of the session's surviving (and unrunnable) mutants, so that
+    ``cosmic-ray exec`` runs them again; how many. (cosmic-ray keeps one row of work_results per
+    mutant run, and exec runs the mutants without one.)"""
+    with sqlite3.connect(session) as db:
+        return db.execute("DELETE FROM work_results WHERE test_outcome IN ('SURVIVED', 'INCOMPETENT')").rowcount
+
+
+def run_module(module: str, tests: list[str], kept: list[str], work: Path, tree: Path, env: dict[str, str],
+               survivors: bool = False) -> None:
+    """Init, filter and execute one module's cosmic-ray session (with ``survivors``, re-execute
+    its last session's survivors), then record its mutants as WORK/<slug>.mutants.json
+    (scripts/mutation_report.py's input)."""
     name = slug(module)
     config, session = work / (name + ".toml"), work / (name + ".sqlite")
+    digest, digest_file = hashlib.sha256((tree / module).read_bytes()).hexdigest(), work / (name + ".sha256")
+    if survivors and (not session.exists() or not digest_file.exists() or digest_file.read_text() != digest):
+        sys.exit("mutation: %s changed since its last session in %s, or has none: run it without --survivors"
+                 % (module, work))
+    command = test_command(tests)
+    took = baseline(command, tree, env)
     config.write_text("[cosmic-ray]\nmodule-path = %s\ntimeout = %.1f\nexcluded-modules = []\ntest-command = %s\n\n"
                       "[cosmic-ray.distributor]\nname = \"local\"\n\n[cosmic-ray.filters.operators-filter]\n"
                       "exclude-operators = %s\n"
                       % (json.dumps(str(tree / module)), max(30.0, 5 * took), json.dumps(command),
                          json.dumps(excluded_operators(kept))), encoding="utf-8")
-    session.unlink(missing_ok=True)
     started = time.monotonic()
     bin_dir = Path(sys.executable).parent
-    for step in ([bin_dir / "cosmic-ray", "init", config, session], [bin_dir / "cr-filter-operators", session, config],
-                 [bin_dir / "cosmic-ray", "exec", config, session]):
+    steps = [[bin_dir / "cosmic-ray", "exec", config, session]]
+    if survivors:
+        print("mutation: %s: running its %d survivors again" % (module, forget_survivors(session)), flush=True)
+    else:
+        session.unlink(missing_ok=True)
+        digest_file.write_text(digest)
+        steps[:0] = [[bin_dir / "cosmic-ray", "init", config, session], [bin_dir / "cr-filter-operators", session, config]]
+    for step in steps:
         subprocess.run([str(part) for part in step], cwd=tree, env=env, check=True)
     dump = subprocess.run([str(bin_dir / "cosmic-ray"), "dump", str(session)], cwd=tree, env=env, check=True,
                           capture_output=True, text=True).stdout
@@ -141,6 +167,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--work", type=Path, default=ROOT / "build" / "mutation")
     parser.add_argument("--module", action="append", help="only this module (repeatable); default: all")
+    parser.add_argument("--survivors", action="store_true",
+                        help="re-run only the mutants that survived each module's last session in WORK")
     args = parser.parse_args(argv)
     config = tomllib.loads(CONFIG.read_text(encoding="utf-8"))
     modules = config["modules"]
@@ -153,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
     tree = copy_tree(work)
     env = environment(work, tree)
     for module in chosen:
-        run_module(module, modules[module]["tests"], config["operators"]["kept"], work, tree, env)
+        run_module(module, modules[module]["tests"], config["operators"]["kept"], work, tree, env, args.survivors)
     report = subprocess.run([sys.executable, str(ROOT / "scripts" / "mutation_report.py"), str(work),
                              "--equivalents", str(ROOT / "tests" / "mutation" / "equivalents.toml")])
     return report.returncode

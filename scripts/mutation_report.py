@@ -124,8 +124,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("work", type=Path, help="the run's work folder (its *.mutants.json)")
     parser.add_argument("--equivalents", type=Path, default=Path("tests/mutation/equivalents.toml"))
     parser.add_argument("--threshold", type=float, default=THRESHOLD)
+    parser.add_argument("--also", type=Path, action="append", default=[], metavar="WORK",
+                        help="another run's work folder whose modules are reported too (the C runtime's, "
+                             "build/mutation-c, from scripts/mutation_c.py)")
     args = parser.parse_args(argv)
-    mutants = [m for path in sorted(args.work.glob("*.mutants.json")) for m in load_mutants(path)]
+    mutants = [m for folder in (args.work, *args.also) for path in sorted(folder.glob("*.mutants.json"))
+               for m in load_mutants(path)]
     results = tally(mutants, load_equivalents(args.equivalents))
     (args.work / "report.md").write_text(markdown(results, args.threshold), encoding="utf-8")
     (args.work / "report.json").write_text(json.dumps(as_json(results, args.threshold), indent=1) + "\n",

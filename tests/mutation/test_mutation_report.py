@@ -3,6 +3,7 @@ by their entry in the equivalents file, the kill rate over the rest, exit status
 threshold; and the runner's reading of cosmic-ray's dump (scripts/mutation.py)."""
 
 import json
+import sqlite3
 import sys
 
 import pytest
@@ -89,7 +90,36 @@ def test_the_runner_gives_cosmic_ray_absolute_paths_when_work_is_relative(tmp_pa
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(mutation, "copy_tree", lambda work: work / "tree")
     monkeypatch.setattr(mutation, "environment", lambda work, tree: {})
-    monkeypatch.setattr(mutation, "run_module", lambda module, tests, kept, work, tree, env: seen.append((work, tree)))
+    monkeypatch.setattr(mutation, "run_module", lambda module, tests, kept, work, tree, env, survivors:
+                        seen.append((work, tree)))
     monkeypatch.setattr(mutation.subprocess, "run", lambda *args, **kwargs: type("Run", (), {"returncode": 0}))
     assert mutation.main(["--work", "build/mutation", "--module", "generator/naming.py"]) == 0
     assert seen == [(tmp_path / "build" / "mutation", tmp_path / "build" / "mutation" / "tree")]
+
+
+def test_survivors_again_forgets_only_the_surviving_and_unrunnable_results(tmp_path):
+    """cosmic-ray exec runs the mutants without a result row: those are the ones to run again."""
+    session = tmp_path / "m.sqlite"
+    with sqlite3.connect(session) as db:
+        db.execute("CREATE TABLE work_results (job_id TEXT, test_outcome TEXT)")
+        db.executemany("INSERT INTO work_results VALUES (?, ?)",
+                       [("a", "KILLED"), ("b", "SURVIVED"), ("c", "INCOMPETENT"), ("d", None), ("e", "SURVIVED")])
+    assert mutation.forget_survivors(session) == 3
+    with sqlite3.connect(session) as db:
+        assert db.execute("SELECT job_id FROM work_results ORDER BY job_id").fetchall() == [("a",), ("d",)]
+
+
+@pytest.mark.parametrize("recorded", [None, "0" * 64])
+def test_survivors_again_is_refused_when_the_module_changed_since_its_session(tmp_path, recorded):
+    """Without the digest of the module its session mutated, or with another, the session's
+    mutants are not this module's: refused before any test runs."""
+    tree, work = tmp_path / "tree", tmp_path / "work"
+    (tree / "generator").mkdir(parents=True)
+    work.mkdir()
+    (tree / "generator" / "m.py").write_text("x = 1\n")
+    (work / "generator__m.sqlite").write_bytes(b"")
+    if recorded is not None:
+        (work / "generator__m.sha256").write_text(recorded)
+    with pytest.raises(SystemExit, match="^mutation: generator/m.py changed since its last session in .*, or has "
+                                         "none: run it without --survivors$"):
+        mutation.run_module("generator/m.py", [], [], work, tree, {}, survivors=True)

@@ -100,3 +100,33 @@ def test_any_quoted_generator_name_is_skipped_and_a_transitions_attribute_ignore
     g = read(tmp_path, '<Generator> "</Alphabet>" <Alphabet> a </Alphabet> <States> s </States>'
                        ' <TransRel> s a s +P+ </TransRel> <InitStates> s </InitStates> </Generator>')
     assert g.events == {"a": (False, False)} and [len(row) for row in g.supervisor.states] == [1]
+
+
+@pytest.mark.parametrize("name", ["Alphabet", "States", "<Alphabet>"])
+def test_a_quoted_generator_name_spelled_like_a_section_is_still_its_name(tmp_path, name):
+    """A string is never a tag: the old style's name "Alphabet" or "<Alphabet>" is skipped."""
+    g = read(tmp_path, '<Generator> "%s" <Alphabet> a </Alphabet> <States> s </States>'
+                       ' <InitStates> s </InitStates> </Generator>' % name)
+    assert g.events == {"a": (False, False)}
+
+
+def unexpected(token):
+    """The refusal of ``token`` where a section must start, on line 1."""
+    return "Generator: line 1: unexpected %r (expected one of Alphabet, States, TransRel, InitStates, MarkedStates)" \
+        % token
+
+
+def test_a_quoted_tag_between_sections_is_refused_not_read_as_a_section(tmp_path):
+    assert refusal(tmp_path, '<Generator> "G" "<Alphabet>" a </Alphabet> </Generator>') == unexpected("<Alphabet>")
+
+
+def test_a_quoted_closing_tag_is_a_name_and_ends_nothing(tmp_path):
+    """"</States>" is a state named so, "</Generator>" a stray string between sections."""
+    g = read(tmp_path, '<Generator> <States> s "</States>" t </States> <InitStates> t </InitStates> </Generator>')
+    assert len(g.supervisor.states) == 3 and g.supervisor.initial == 2
+    assert refusal(tmp_path, '<Generator> <States> s </States> "</Generator>"') == unexpected("</Generator>")
+
+
+def test_a_state_after_an_attribute_is_read(tmp_path):
+    g = read(tmp_path, "<Generator> <States> s +o+ t </States> <InitStates> t </InitStates> </Generator>")
+    assert len(g.supervisor.states) == 2 and g.supervisor.initial == 1
