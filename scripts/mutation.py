@@ -27,8 +27,11 @@ import time
 import tomllib
 from pathlib import Path
 
+import mutation_report
+
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / "tests" / "mutation" / "modules.toml"
+EQUIVALENTS = ROOT / "tests" / "mutation" / "equivalents.toml"
 # Left out of the copy: what a build, a venv, git or a test run leaves, and earlier mutation runs.
 IGNORED = shutil.ignore_patterns("build", ".venv", ".git", "__pycache__", "*.pyc", ".pytest_cache", ".hypothesis",
                                  "*.egg-info", "mutants", ".swarmvm-*")
@@ -90,12 +93,18 @@ def baseline(command: str, tree: Path, env: dict[str, str]) -> float:
     return time.monotonic() - started
 
 
-def forget_survivors(session: Path) -> int:
-    """Drop the results of the session's surviving (and unrunnable) mutants, so that
-    ``cosmic-ray exec`` runs them again; how many. (cosmic-ray keeps one row of work_results per
-    mutant run, and exec runs the mutants without one.)"""
+def forget_survivors(session: Path, module: str, source: list[str], equivalents: set[tuple[str, str, str, int]]) -> int:
+    """Drop the results of the session's surviving (and unrunnable) mutants of ``module`` (its
+    lines ``source``) but those marked equivalent, so that ``cosmic-ray exec`` runs them again; how
+    many. (cosmic-ray keeps one row of work_results per mutant run, and exec runs the mutants
+    without one; an equivalent mutant would only survive again.)"""
     with sqlite3.connect(session) as db:
-        return db.execute("DELETE FROM work_results WHERE test_outcome IN ('SURVIVED', 'INCOMPETENT')").rowcount
+        rows = db.execute("SELECT job_id, operator_name, start_pos_row, start_pos_col FROM work_results "
+                          "JOIN mutation_specs USING (job_id) WHERE test_outcome IN ('SURVIVED', 'INCOMPETENT')")
+        again = [(job,) for job, operator, row, column in rows.fetchall()
+                 if (module, operator, source[row - 1].strip(), column) not in equivalents]
+        db.executemany("DELETE FROM work_results WHERE job_id = ?", again)
+    return len(again)
 
 
 def run_module(module: str, tests: list[str], kept: list[str], work: Path, tree: Path, env: dict[str, str],
@@ -120,7 +129,10 @@ def run_module(module: str, tests: list[str], kept: list[str], work: Path, tree:
     bin_dir = Path(sys.executable).parent
     steps = [[bin_dir / "cosmic-ray", "exec", config, session]]
     if survivors:
-        print("mutation: %s: running its %d survivors again" % (module, forget_survivors(session)), flush=True)
+        source = (tree / module).read_text(encoding="utf-8").splitlines()
+        equivalents = set(mutation_report.load_equivalents(EQUIVALENTS))
+        print("mutation: %s: running its %d survivors again (those marked equivalent left out)"
+              % (module, forget_survivors(session, module, source, equivalents)), flush=True)
     else:
         session.unlink(missing_ok=True)
         digest_file.write_text(digest)
@@ -183,7 +195,7 @@ def main(argv: list[str] | None = None) -> int:
     for module in chosen:
         run_module(module, modules[module]["tests"], config["operators"]["kept"], work, tree, env, args.survivors)
     report = subprocess.run([sys.executable, str(ROOT / "scripts" / "mutation_report.py"), str(work),
-                             "--equivalents", str(ROOT / "tests" / "mutation" / "equivalents.toml")])
+                             "--equivalents", str(EQUIVALENTS)])
     return report.returncode
 
 

@@ -97,16 +97,22 @@ def test_the_runner_gives_cosmic_ray_absolute_paths_when_work_is_relative(tmp_pa
     assert seen == [(tmp_path / "build" / "mutation", tmp_path / "build" / "mutation" / "tree")]
 
 
-def test_survivors_again_forgets_only_the_surviving_and_unrunnable_results(tmp_path):
-    """cosmic-ray exec runs the mutants without a result row: those are the ones to run again."""
+def test_survivors_again_forgets_only_the_surviving_and_unrunnable_results_not_marked_equivalent(tmp_path):
+    """cosmic-ray exec runs the mutants without a result row: those are the ones to run again,
+    but for survivors marked equivalent, which would only survive again."""
     session = tmp_path / "m.sqlite"
     with sqlite3.connect(session) as db:
         db.execute("CREATE TABLE work_results (job_id TEXT, test_outcome TEXT)")
-        db.executemany("INSERT INTO work_results VALUES (?, ?)",
-                       [("a", "KILLED"), ("b", "SURVIVED"), ("c", "INCOMPETENT"), ("d", None), ("e", "SURVIVED")])
-    assert mutation.forget_survivors(session) == 3
+        db.execute("CREATE TABLE mutation_specs (job_id TEXT, operator_name TEXT, start_pos_row INT, start_pos_col INT)")
+        jobs = [("a", "KILLED", 2), ("b", "SURVIVED", 2), ("c", "INCOMPETENT", 2), ("d", None, 2), ("e", "SURVIVED", 1)]
+        db.executemany("INSERT INTO work_results VALUES (?, ?)", [(job, outcome) for job, outcome, _ in jobs])
+        db.executemany("INSERT INTO mutation_specs VALUES (?, 'core/NumberReplacer', ?, 4)",
+                       [(job, row) for job, _, row in jobs])
+    source = ["x = 1", "    y = 2  "]
+    equivalent = {("m.py", "core/NumberReplacer", "x = 1", 4)}
+    assert mutation.forget_survivors(session, "m.py", source, equivalent) == 2
     with sqlite3.connect(session) as db:
-        assert db.execute("SELECT job_id FROM work_results ORDER BY job_id").fetchall() == [("a",), ("d",)]
+        assert db.execute("SELECT job_id FROM work_results ORDER BY job_id").fetchall() == [("a",), ("d",), ("e",)]
 
 
 @pytest.mark.parametrize("recorded", [None, "0" * 64])

@@ -6,6 +6,7 @@ a controller's checks bound on uncontrollable events only, and the refusal of an
 
 import linecache
 import random
+import re
 import struct
 import subprocess
 import sys
@@ -66,7 +67,10 @@ def test_a_traceback_through_a_written_out_step_names_its_kind_and_shows_its_lin
         machine.step()
     frames = [frame for frame in traceback.extract_tb(raised.value.__traceback__)
               if frame.filename.startswith("<swarmvm ")]
-    assert frames and all(frame.filename.startswith("<swarmvm canonical step ") and frame.line for frame in frames)
+    assert frames and all(re.fullmatch(r"<swarmvm canonical step [0-9a-f]{12}>", frame.filename) and frame.line
+                          for frame in frames)
+    # linecache holds the step's lines as it holds a file's: each with its line end
+    assert all(linecache.getline(frame.filename, frame.lineno).endswith("\n") for frame in frames)
 
 
 @pytest.mark.parametrize("option,message", [
@@ -78,6 +82,19 @@ def test_an_unknown_option_is_refused_naming_the_choices(vm, option, message):
     with pytest.raises(ValueError) as refused:
         vm.VM(two_choices([0, 0]), **option)
     assert str(refused.value) == message
+
+
+def test_a_vm_is_seeded_1_by_default(vm):
+    machine, oracle = vm.VM(two_choices([0, 0])), vm.XorShift32(1)
+    assert [machine.step() for _ in range(24)] == [[oracle.below(2)] for _ in range(24)]
+
+
+def test_policy_first_ranks_the_listed_events_then_the_others_by_name(vm, tmp_path):
+    """Events a, b, c (by name), b listed: b first, then a, then c."""
+    image = image_of(tmp_path, supervisor_yaml(["a", "b", "c"], [1, 1, 1], [{"a", "b", "c"}],
+                                               [[[("a", 0), ("b", 0), ("c", 0)]]]))
+    rank = vm.VM(image, policy="first", priority=["b"]).rank
+    assert sorted(range(3), key=rank.__getitem__) == [1, 0, 2]
 
 
 def test_the_default_generator_starts_from_seed_1(vm):
@@ -144,6 +161,18 @@ def test_a_controller_s_checks_are_bound_on_its_uncontrollable_events_only(vm, t
     machine.bind_controller(Controller())
     assert sorted(machine.checks) == [1] and sorted(machine.actions) == [0]
 
+    class Other:                # the controllable event second: "aa" an input, "zz" controllable
+        def check_aa(self, data):
+            return True
+
+        def check_zz(self, data):
+            return True
+
+    machine = vm.VM(image_of(tmp_path, supervisor_yaml(["aa", "zz"], [0, 1], [{"aa", "zz"}],
+                                                       [[[("aa", 0), ("zz", 0)]]])))
+    machine.bind_controller(Other())
+    assert sorted(machine.checks) == [0]
+
 
 # Uncontrollable "hit" and controllable "a" and "b", all self-loops on one state (file order).
 THREE_LOOPS = supervisor_yaml(["hit", "a", "b"], [0, 1, 1], [{"hit", "a", "b"}],
@@ -157,11 +186,24 @@ def sct_of(vm, tmp_path, **options):
 
 
 def test_the_canonical_sct_step_buffers_the_inputs_without_the_controllable_event(vm, tmp_path):
-    sct = sct_of(vm, tmp_path, exact=False)
-    sct.add_callback(sct.EV["EV_hit"], None, lambda data: True, None)
+    """Two inputs and a controllable event fire: the buffer holds both inputs."""
+    path = tmp_path / "two.yaml"
+    path.write_text(supervisor_yaml(["hit", "kick", "go"], [0, 0, 1], [{"hit", "kick", "go"}],
+                                    [[[("hit", 0), ("kick", 0), ("go", 0)]]]))
+    sct = vm.SCT(str(path), exact=False)
+    for name in ("EV_hit", "EV_kick"):
+        sct.add_callback(sct.EV[name], None, lambda data: True, None)
     sct.run_step()
-    assert len(sct.last_events) == 2 and sct.input_buffer == [sct.EV["EV_hit"]]
+    assert len(sct.last_events) == 3 and sorted(sct.input_buffer) == sorted([sct.EV["EV_hit"], sct.EV["EV_kick"]])
     assert sct.ev_controllable[sct.last_events[-1]] == 1
+
+
+def test_an_exact_sct_check_that_raises_reaches_the_caller_as_it_is(vm, tmp_path):
+    """As the published VM: no CallbackError around it."""
+    sct = sct_of(vm, tmp_path)
+    sct.add_callback(sct.EV["EV_hit"], None, lambda data: 1 / 0, None)
+    with pytest.raises(ZeroDivisionError):
+        sct.run_step()
 
 
 def test_a_step_whose_input_action_registers_again_chooses_as_published(vm, tmp_path):
@@ -258,3 +300,29 @@ def test_an_event_fired_moves_every_supervisor_that_has_it(vm, tmp_path):
     machine = vm.VM(image_of(tmp_path, SHARED))
     machine._apply(0)
     assert machine.states == [1, 1]
+
+
+def test_the_weighted_policy_reads_the_weights_of_the_state_the_supervisor_is_in(vm, tmp_path):
+    """States 0 -a-> 1, 1 -b (weight 1)-> 2 and -c (weight 0)-> 2, 2 -d-> 0: c is never taken."""
+    image = image_of(tmp_path, supervisor_yaml(["a", "b", "c", "d"], [1, 1, 1, 1], [{"a", "b", "c", "d"}],
+                                               [[[("a", 1)], [("b", 2), ("c", 2)], [("d", 0)]]],
+                                               probabilities=[[["1"], ["1", "0"], ["1"]]]))
+    machine = vm.VM(image, policy="weighted", seed=5)
+    assert [machine.step() for _ in range(30)] == [[0], [1], [3]] * 10
+
+
+def test_an_image_whose_start_state_is_past_its_supervisor_is_refused(vm, tmp_path):
+    """The source section's start state of a one-state supervisor: 0 is read, 1 refused."""
+    for start in (0, 1):
+        sections = {"controllable": b"\x03", "public": b"\0", "supervisors": b"\x03" + F.SUPERVISOR_RECORD.pack(0, 1, 0),
+                    "states": b"\x03" + F.STATE_RECORD.pack(0), "targets": bytes(2), "names": b"\x01a\x01b",
+                    "order": b"\x00\x01" + struct.pack("<H", 0),
+                    "source": bytes(F.SOURCE_DIGEST_SIZE) + struct.pack("<H", start) + b"\x01a\x01b"}
+        path = tmp_path / "s.svm"
+        path.write_bytes(F.assemble(2, 1, 1, 2, 1, sections))
+        if start == 0:
+            assert vm.SCT(str(path)).vm.states == [0]
+            continue
+        with pytest.raises(F.ImageError) as refused:
+            vm.SCT(str(path))
+        assert str(refused.value) == "%s: image source section: a start state outside its supervisor" % path
