@@ -86,9 +86,9 @@ def _names(path: str, section: str, tokens: Sequence[Token]) -> List[str]:
     i = 0
     while i < len(tokens):
         kind, value, line = tokens[i]
-        if value == "<Consecutive>":
+        if (kind, value) == ("tag", "<Consecutive>"):
             first, last = (ascii_int(tokens[i + k][1]) if i + k < len(tokens) else None for k in (1, 2))
-            if i + 3 >= len(tokens) or tokens[i + 3][1] != "</Consecutive>" or first is None or last is None:
+            if i + 3 >= len(tokens) or tokens[i + 3][:2] != ("tag", "</Consecutive>") or first is None or last is None:
                 raise InputError(path, section, "expected <Consecutive> first last </Consecutive>", "line %d" % line)
             if last - first >= MAX_CONSECUTIVE:
                 raise InputError(path, section, "<Consecutive> %d %d: over %d states" % (first, last, MAX_CONSECUTIVE),

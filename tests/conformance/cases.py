@@ -109,6 +109,13 @@ def supervisor_yaml(events, controllable, alphabets, states, initial=None, publi
     return "\n".join(lines) + "\n"
 
 
+def compiled_image(folder, text, name="s.yaml"):
+    """The image of the supervisor.yaml ``text`` (supervisor_yaml's), written as ``folder/name``."""
+    path = Path(folder) / name
+    path.write_text(text)
+    return compile_inputs([str(path)]).image
+
+
 def one_supervisor_yaml(events, controllable, state_transitions):
     """A supervisor.yaml of one local supervisor of one state whose alphabet is every event, all
     private: ``state_transitions`` its self-loops' event names."""

@@ -130,3 +130,19 @@ def test_a_quoted_closing_tag_is_a_name_and_ends_nothing(tmp_path):
 def test_a_state_after_an_attribute_is_read(tmp_path):
     g = read(tmp_path, "<Generator> <States> s +o+ t </States> <InitStates> t </InitStates> </Generator>")
     assert len(g.supervisor.states) == 2 and g.supervisor.initial == 1
+
+
+@pytest.mark.parametrize("tag", ["Generator", "Alphabet", "States", "TransRel", "InitStates", "MarkedStates",
+                                 "Consecutive"])
+def test_every_tag_spelled_in_a_string_is_a_state_name(tmp_path, tag):
+    """The class of the two defects above: each tag of the format, opening, closing and
+    self-closed, written as a quoted state name, is that name and ends or opens nothing."""
+    names = ["<%s>" % tag, "</%s>" % tag, "<%s/>" % tag, tag]
+    quoted = " ".join('"%s"' % name for name in names)
+    g = read(tmp_path, '<Generator> "G" <States> %s s </States> <InitStates> s </InitStates> </Generator>' % quoted)
+    assert len(g.supervisor.states) == len(names) + 1 and g.supervisor.initial == len(names)
+
+
+def test_a_range_is_closed_by_the_tag_not_by_a_string_spelled_like_it(tmp_path):
+    assert refusal(tmp_path, '<Generator> <States> <Consecutive> 1 2 "</Consecutive>" </States> </Generator>') == \
+        "States: line 1: expected <Consecutive> first last </Consecutive>"

@@ -4,21 +4,16 @@ the other image tests (issue 29, docs/mutation.md)."""
 
 import pytest
 
+from one_state_image import one_state_image
 from swarmvm.runtime import image_format
 
 FORMAT = image_format()
 
 
 def image(events=3, controllable=0b001, alphabet=0b111, defined=0, names=None):
-    """One supervisor of one state, ``defined`` its events (self-loops), through the format's own
-    writer (so the checksum is right and only the checked defect is wrong)."""
-    record = FORMAT.SUPERVISOR_RECORD.pack(0, 1, 0)
-    loops = bin(defined).count("1")
-    sections = {"controllable": bytes([controllable]), "public": b"\0", "supervisors": bytes([alphabet]) + record,
-                "states": bytes([defined]) + FORMAT.STATE_RECORD.pack(0), "targets": bytes(loops)}
-    if names is not None:
-        sections["names"] = b"".join(bytes([len(n)]) + n.encode() for n in names)
-    return FORMAT.assemble(events, 1, 1, loops, 1, sections)
+    """One supervisor of one state, ``defined`` its events (self-loops), ``names`` its names section."""
+    sections = None if names is None else {"names": b"".join(bytes([len(n)]) + n.encode() for n in names)}
+    return one_state_image(events, controllable, alphabet, defined, sections=sections)
 
 
 def refusal(raw):

@@ -10,26 +10,10 @@ import pytest
 
 from swarmvm.automaton import AutomatonBuilder
 from swarmvm.errors import InputError
+from one_state_image import one_state_image
 from swarmvm.runtime import image_format
 
 F = image_format()
-
-
-def loops_image(events, controllable, sections=None, probs=None):
-    """One supervisor of one state with a self-loop on every event; masks of (events + 7) // 8
-    bytes; ``sections`` added (names, order, source); ``probs`` one Q15 value per loop."""
-    width = (events + 7) // 8
-    every = (1 << events) - 1
-
-    def mask(value):
-        return value.to_bytes(width, "little")
-
-    body = {"controllable": mask(controllable), "public": mask(0),
-            "supervisors": mask(every) + F.SUPERVISOR_RECORD.pack(0, 1, 0),
-            "states": mask(every) + F.STATE_RECORD.pack(0), "targets": bytes(events), **(sections or {})}
-    if probs is not None:
-        body["probs"] = struct.pack("<%dH" % len(probs), *probs)
-    return F.assemble(events, 1, 1, events, 1, body)
 
 
 def refusal(raw):
@@ -42,18 +26,18 @@ def refusal(raw):
 def test_masks_of_every_width_are_read_bit_for_bit(events):
     """Widths 1, 2, 4 and 8 bytes unpack as integers, the others byte by byte: both on each side."""
     controllable = sum(1 << e for e in range(events) if e % 3 == 0) | 1 << (events - 1)
-    parsed = F.Image.parse(loops_image(events, controllable))
+    parsed = F.Image.parse(one_state_image(events, controllable))
     assert (parsed.controllable, parsed.sup_alphabet, parsed.state_defined) == \
         (controllable, [(1 << events) - 1], [(1 << events) - 1])
 
 
 def test_the_probabilities_are_read_behind_the_targets():
-    parsed = F.Image.parse(loops_image(3, 0b001, probs=[F.Q15_ONE, 1, 0x1234]))
+    parsed = F.Image.parse(one_state_image(3, 0b001, probs=[F.Q15_ONE, 1, 0x1234]))
     assert parsed.probs == [F.Q15_ONE, 1, 0x1234] and parsed.targets == [0, 0, 0]
 
 
 def test_a_checksum_mismatch_names_both_values():
-    raw = bytearray(loops_image(3, 0b001))
+    raw = bytearray(one_state_image(3, 0b001))
     computed = F.crc16(bytes(raw[:-2]))
     raw[-2:] = b"\x34\xab"
     assert refusal(bytes(raw)) == (F.ErrorCode.CRC, "image checksum mismatch (stored 0xab34, computed 0x%04x)"
@@ -66,9 +50,9 @@ def names_and_order(events, order, state=0x0102):
 
 
 def test_an_order_section_holds_each_event_index_below_the_event_count():
-    parsed = F.Image.parse(loops_image(3, 0b001, names_and_order(3, [2, 0, 1])))
+    parsed = F.Image.parse(one_state_image(3, 0b001, sections=names_and_order(3, [2, 0, 1])))
     assert (parsed.order, parsed.state_order) == ([2, 0, 1], [0x0102])
-    assert refusal(loops_image(3, 0b001, names_and_order(3, [3, 0, 1]))) == \
+    assert refusal(one_state_image(3, 0b001, sections=names_and_order(3, [3, 0, 1]))) == \
         (F.ErrorCode.LAYOUT, "image order section names an event index beyond the 3 events")
 
 
@@ -79,18 +63,18 @@ def source(written, start=0x0203):
 
 def test_a_source_section_gives_each_events_name_as_written():
     written = [b"EV_a", b"go-on", b"c" * 200]
-    parsed = F.Image.parse(loops_image(3, 0b001, {**names_and_order(3, [0, 1, 2]), "source": source(written)}))
+    parsed = F.Image.parse(one_state_image(3, 0b001, sections={**names_and_order(3, [0, 1, 2]), "source": source(written)}))
     assert parsed.source == F.Source(b"\x5a" * 32, [0x0203], ["EV_a", "go-on", "c" * 200])
 
 
 def test_a_source_section_shorter_than_its_digest_and_start_states_is_refused():
-    raw = loops_image(3, 0b001, {**names_and_order(3, [0, 1, 2]), "source": b"\x5a" * (F.SOURCE_DIGEST_SIZE + 1)})
+    raw = one_state_image(3, 0b001, sections={**names_and_order(3, [0, 1, 2]), "source": b"\x5a" * (F.SOURCE_DIGEST_SIZE + 1)})
     assert refusal(raw) == (F.ErrorCode.LAYOUT, "image source section runs past the checksum at byte %d"
                             % (len(raw) - F.CRC_SIZE))
 
 
 def test_a_source_section_of_its_digest_and_start_states_alone_lacks_the_first_name():
-    raw = loops_image(3, 0b001, {**names_and_order(3, [0, 1, 2]), "source": source([])})
+    raw = one_state_image(3, 0b001, sections={**names_and_order(3, [0, 1, 2]), "source": source([])})
     assert refusal(raw) == (F.ErrorCode.LAYOUT, "image source section: event 0's written name runs past the "
                                                 "checksum at byte %d" % (len(raw) - F.CRC_SIZE))
 
@@ -98,7 +82,7 @@ def test_a_source_section_of_its_digest_and_start_states_alone_lacks_the_first_n
 def test_a_source_name_longer_than_what_is_left_is_refused():
     """The last written name's length byte says one byte more than the section holds."""
     section = source([b"a", b"b", b"c"])
-    raw = loops_image(3, 0b001, {**names_and_order(3, [0, 1, 2]), "source": section[:-2] + b"\x02c"})
+    raw = one_state_image(3, 0b001, sections={**names_and_order(3, [0, 1, 2]), "source": section[:-2] + b"\x02c"})
     end = len(raw) - F.CRC_SIZE
     assert refusal(raw) == (F.ErrorCode.LAYOUT, "image source section: event 2's written name runs past the "
                                                 "checksum at byte %d" % end)
@@ -134,10 +118,10 @@ def test_an_image_without_supervisors_or_with_odd_state_numbers_is_refused_by_it
 
 def test_an_image_of_the_format_maximum_is_not_refused_for_its_size():
     """65,535 bytes is within the format (then refused for its length field); one more is not."""
-    raw = bytearray(loops_image(3, 0b001))
+    raw = bytearray(one_state_image(3, 0b001))
     raw += bytes(F.MAX_IMAGE_SIZE - len(raw))
     assert refusal(bytes(raw)) == (F.ErrorCode.LENGTH, "image length field says %d bytes, got %d"
-                                   % (len(loops_image(3, 0b001)), F.MAX_IMAGE_SIZE))
+                                   % (len(one_state_image(3, 0b001)), F.MAX_IMAGE_SIZE))
     assert refusal(bytes(raw) + b"\0") == (F.ErrorCode.LENGTH, "image of %d bytes or more, over the format's "
                                             "maximum of %d" % (F.MAX_IMAGE_SIZE + 1, F.MAX_IMAGE_SIZE))
 
@@ -158,18 +142,9 @@ def test_the_transition_limit_is_the_largest_count_the_header_holds():
         F.HEADER.pack(*fields._replace(num_transitions=F.MAX_TRANSITIONS + 1))
 
 
-def one_state(defined, targets, first_successor=0, transitions=None):
-    """One supervisor of one state over 3 events: ``defined`` its events, its successors from
-    ``first_successor`` in ``targets``; the header's transition count ``transitions`` (default:
-    as many as targets)."""
-    sections = {"controllable": b"\x01", "public": b"\0", "supervisors": b"\x07" + F.SUPERVISOR_RECORD.pack(0, 1, 0),
-                "states": bytes([defined]) + F.STATE_RECORD.pack(first_successor), "targets": bytes(targets)}
-    return F.assemble(3, 1, 1, len(targets) if transitions is None else transitions, 1, sections)
-
-
 @pytest.mark.parametrize("raw,message", [
-    (one_state(0b001, [1]), "image transition 0 leads outside its supervisor 0"),
-    (one_state(0b001, [0, 0], first_successor=1), "image state 0's successors start at target 1, not right after the "
+    (one_state_image(defined=0b001, targets=[1]), "image transition 0 leads outside its supervisor 0"),
+    (one_state_image(defined=0b001, targets=[0, 0], first_successor=1), "image state 0's successors start at target 1, not right after the "
                                                   "previous state's (0)"),
 ], ids=["target-outside-at-the-boundary", "successors-after-a-gap"])
 def test_a_state_whose_successors_do_not_fit_the_target_section_is_refused(raw, message):
@@ -178,7 +153,7 @@ def test_a_state_whose_successors_do_not_fit_the_target_section_is_refused(raw, 
 
 def test_a_state_with_more_successors_than_the_header_counts_is_refused():
     """Three self-loops, the header counting two transitions (the target section sized for two)."""
-    raw = one_state(0b111, [0, 0], transitions=2)
+    raw = one_state_image(defined=0b111, targets=[0, 0], transitions=2)
     assert refusal(raw) == (F.ErrorCode.LAYOUT, "image state 0 has successors outside the target section")
 
 
@@ -201,7 +176,7 @@ def test_the_smallest_image_is_a_header_and_its_checksum():
 
 
 def test_a_wrong_magic_is_named_beside_the_expected_one():
-    raw = b"XVMI" + loops_image(3, 0b001)[4:]
+    raw = b"XVMI" + one_state_image(3, 0b001)[4:]
     assert refusal(raw) == (F.ErrorCode.MAGIC, "not a swarmvm table image (magic b'XVMI', expected b'SVMI')")
 
 
@@ -213,7 +188,7 @@ def test_an_image_of_exactly_the_format_maximum_can_be_assembled():
 
 def test_a_source_section_without_an_order_section_is_refused():
     names = {"names": b"\x01a\x01b\x01c", "source": source([b"a", b"b", b"c"])}
-    assert refusal(loops_image(3, 0b001, names)) == (
+    assert refusal(one_state_image(3, 0b001, sections=names)) == (
         F.ErrorCode.LAYOUT, "image has a source section without an order section: the compiler writes it only with one")
 
 
@@ -222,7 +197,7 @@ def test_a_source_section_without_an_order_section_is_refused():
     (b"\x01a\x01b\x02c", "image event 2's name runs past the checksum at byte %d"),
 ], ids=["a-name-missing", "one-byte-short"])
 def test_a_names_section_short_of_its_last_name_is_refused(names, message):
-    raw = loops_image(3, 0b001, {"names": names})
+    raw = one_state_image(3, 0b001, sections={"names": names})
     assert refusal(raw) == (F.ErrorCode.LAYOUT, message.replace("%d", str(len(raw) - F.CRC_SIZE)))
 
 
@@ -230,7 +205,7 @@ def test_a_name_of_255_characters_is_the_longest_a_length_byte_holds():
     """The reader reads one; the compiler accepts one and refuses a 256th character."""
     names = [b"a" * 255, b"b", b"c"]
     section = b"".join(bytes([len(n)]) + n for n in names)
-    assert F.Image.parse(loops_image(3, 0b001, {"names": section})).names == ["a" * 255, "b", "c"]
+    assert F.Image.parse(one_state_image(3, 0b001, sections={"names": section})).names == ["a" * 255, "b", "c"]
     builder = AutomatonBuilder("m.gen")
     builder.event(0, "a" * 255, True)
     with pytest.raises(InputError) as refused:

@@ -14,8 +14,8 @@ import traceback
 
 import pytest
 
-from conformance.cases import supervisor_yaml
-from swarmvm.pipeline import compile_inputs
+from conformance.cases import compiled_image, supervisor_yaml
+from one_state_image import one_state_image
 from swarmvm.runtime import RUNTIME_PY_DIR, image_format
 
 F = image_format()
@@ -24,10 +24,7 @@ F = image_format()
 def two_choices(probs):
     """One supervisor of one state, controllable events 0 and 1 looping on it, with Q15
     probabilities ``probs``."""
-    sections = {"controllable": b"\x03", "public": b"\0", "supervisors": b"\x03" + F.SUPERVISOR_RECORD.pack(0, 1, 0),
-                "states": b"\x03" + F.STATE_RECORD.pack(0), "targets": bytes(2),
-                "probs": struct.pack("<2H", *probs)}
-    return F.assemble(2, 1, 1, 2, 1, sections)
+    return one_state_image(2, 0b11, probs=probs)
 
 
 def test_the_weighted_policy_draws_uniformly_when_every_enabled_event_weighs_0(vm):
@@ -91,7 +88,7 @@ def test_a_vm_is_seeded_1_by_default(vm):
 
 def test_policy_first_ranks_the_listed_events_then_the_others_by_name(vm, tmp_path):
     """Events a, b, c (by name), b listed: b first, then a, then c."""
-    image = image_of(tmp_path, supervisor_yaml(["a", "b", "c"], [1, 1, 1], [{"a", "b", "c"}],
+    image = compiled_image(tmp_path, supervisor_yaml(["a", "b", "c"], [1, 1, 1], [{"a", "b", "c"}],
                                                [[[("a", 0), ("b", 0), ("c", 0)]]]))
     rank = vm.VM(image, policy="first", priority=["b"]).rank
     assert sorted(range(3), key=rank.__getitem__) == [1, 0, 2]
@@ -113,19 +110,13 @@ def test_the_weighted_draw_takes_the_first_event_below_its_weight_and_the_next_a
     assert [0] in choices and [1] in choices
 
 
-def image_of(tmp_path, text):
-    path = tmp_path / "s.yaml"
-    path.write_text(text)
-    return compile_inputs([str(path)]).image
-
-
 # Controllable "go" (event 0 in name order) and uncontrollable "hit" (event 1): hit leads from
 # state 0 to state 1, where neither is defined; go loops on state 0.
 HIT_ONCE = supervisor_yaml(["hit", "go"], [0, 1], [{"hit", "go"}], [[[("hit", 1), ("go", 0)], []]])
 
 
 def test_the_violation_counter_stops_at_its_maximum(vm, tmp_path):
-    machine = vm.VM(image_of(tmp_path, HIT_ONCE))
+    machine = vm.VM(compiled_image(tmp_path, HIT_ONCE))
     machine.bind("hit", check=lambda data: True)
     machine.step()
     machine.violations = vm.MAX_VIOLATIONS - 2
@@ -137,7 +128,7 @@ def test_the_violation_counter_stops_at_its_maximum(vm, tmp_path):
 
 
 def test_an_event_index_is_bound_from_0_to_the_last_event(vm, tmp_path):
-    machine = vm.VM(image_of(tmp_path, HIT_ONCE))
+    machine = vm.VM(compiled_image(tmp_path, HIT_ONCE))
     machine.bind(1, check=lambda data: False)
     assert sorted(machine.checks) == [1]
     for index in (2, -1):
@@ -157,7 +148,7 @@ def test_a_controller_s_checks_are_bound_on_its_uncontrollable_events_only(vm, t
         def check_hit(self, data):
             return True
 
-    machine = vm.VM(image_of(tmp_path, HIT_ONCE))
+    machine = vm.VM(compiled_image(tmp_path, HIT_ONCE))
     machine.bind_controller(Controller())
     assert sorted(machine.checks) == [1] and sorted(machine.actions) == [0]
 
@@ -168,7 +159,7 @@ def test_a_controller_s_checks_are_bound_on_its_uncontrollable_events_only(vm, t
         def check_zz(self, data):
             return True
 
-    machine = vm.VM(image_of(tmp_path, supervisor_yaml(["aa", "zz"], [0, 1], [{"aa", "zz"}],
+    machine = vm.VM(compiled_image(tmp_path, supervisor_yaml(["aa", "zz"], [0, 1], [{"aa", "zz"}],
                                                        [[[("aa", 0), ("zz", 0)]]])))
     machine.bind_controller(Other())
     assert sorted(machine.checks) == [0]
@@ -236,7 +227,7 @@ def test_an_image_without_a_source_section_beside_its_yaml_is_read(vm, tmp_path)
 
 
 def test_a_strict_vm_refuses_to_step_before_every_input_has_a_check(vm, tmp_path):
-    machine = vm.VM(image_of(tmp_path, HIT_ONCE), strict=True)
+    machine = vm.VM(compiled_image(tmp_path, HIT_ONCE), strict=True)
     with pytest.raises(vm.UnboundEvents) as refused:
         machine.step()
     assert str(refused.value) == "no check bound for EV_hit"
@@ -245,7 +236,7 @@ def test_a_strict_vm_refuses_to_step_before_every_input_has_a_check(vm, tmp_path
 
 
 def test_the_moves_table_gives_each_state_its_successors_by_event(vm, tmp_path):
-    machine = vm.VM(image_of(tmp_path, HIT_ONCE))
+    machine = vm.VM(compiled_image(tmp_path, HIT_ONCE))
     assert machine.moves == [[{0: 0, 1: 1}, {}]]
 
 
@@ -261,7 +252,7 @@ def test_the_vm_module_imports_beside_its_format_without_the_compiler(tmp_path):
 
 def test_a_check_that_raises_is_named_by_its_event_when_it_is_the_only_input(vm, tmp_path):
     """The input "aa" is event 0 of 2 (not the last, whose name an index of -1 would give)."""
-    machine = vm.VM(image_of(tmp_path, supervisor_yaml(["aa", "zz"], [0, 1], [{"aa", "zz"}],
+    machine = vm.VM(compiled_image(tmp_path, supervisor_yaml(["aa", "zz"], [0, 1], [{"aa", "zz"}],
                                                        [[[("aa", 0), ("zz", 0)]]])))
     machine.bind("aa", check=lambda data: 1 / 0)
     with pytest.raises(vm.CallbackError) as raised:
@@ -282,7 +273,7 @@ def test_the_learned_policy_needs_a_learner_and_takes_one(vm, tmp_path):
 
 
 def test_callbacks_bound_by_name_refuse_an_image_without_names(vm, tmp_path):
-    named = image_of(tmp_path, HIT_ONCE)
+    named = compiled_image(tmp_path, HIT_ONCE)
     nameless = F.Image.parse(two_choices([0, 0]))
     machine = vm.VM(named)
     machine.bind("go", action=print)
@@ -297,14 +288,14 @@ SHARED = supervisor_yaml(["go"], [1], [{"go"}, {"go"}], [[[("go", 1)], []], [[("
 
 
 def test_an_event_fired_moves_every_supervisor_that_has_it(vm, tmp_path):
-    machine = vm.VM(image_of(tmp_path, SHARED))
+    machine = vm.VM(compiled_image(tmp_path, SHARED))
     machine._apply(0)
     assert machine.states == [1, 1]
 
 
 def test_the_weighted_policy_reads_the_weights_of_the_state_the_supervisor_is_in(vm, tmp_path):
     """States 0 -a-> 1, 1 -b (weight 1)-> 2 and -c (weight 0)-> 2, 2 -d-> 0: c is never taken."""
-    image = image_of(tmp_path, supervisor_yaml(["a", "b", "c", "d"], [1, 1, 1, 1], [{"a", "b", "c", "d"}],
+    image = compiled_image(tmp_path, supervisor_yaml(["a", "b", "c", "d"], [1, 1, 1, 1], [{"a", "b", "c", "d"}],
                                                [[[("a", 1)], [("b", 2), ("c", 2)], [("d", 0)]]],
                                                probabilities=[[["1"], ["1", "0"], ["1"]]]))
     machine = vm.VM(image, policy="weighted", seed=5)

@@ -2,8 +2,7 @@
 (swarmvm_vm.Bindings._rebind): deleting the line that moves the actions survived every other test,
 whose images kept the events' indices (issue 29)."""
 
-from conformance.cases import supervisor_yaml
-from swarmvm.pipeline import compile_inputs
+from conformance.cases import compiled_image, supervisor_yaml
 
 # One supervisor, one state: controllable "go" and uncontrollable "hit", self-loops. The second
 # image adds "aaa" (uncontrollable, never occurring), first in name order: go and hit move up one.
@@ -12,14 +11,8 @@ SECOND = supervisor_yaml(["go", "hit", "aaa"], [1, 0, 0], [{"go", "hit", "aaa"}]
                          [[[("go", 0), ("hit", 0), ("aaa", 0)]]])
 
 
-def image_of(tmp_path, text, name):
-    path = tmp_path / name
-    path.write_text(text)
-    return compile_inputs([str(path)]).image
-
-
 def test_a_reload_with_other_event_indices_keeps_actions_and_checks_by_name(vm, tmp_path):
-    first, second = image_of(tmp_path, FIRST, "first.yaml"), image_of(tmp_path, SECOND, "second.yaml")
+    first, second = compiled_image(tmp_path, FIRST, "first.yaml"), compiled_image(tmp_path, SECOND, "second.yaml")
     machine = vm.VM(first)
     calls = []
     machine.bind("go", action=lambda data: calls.append(("go", data)), data="g")
