@@ -33,7 +33,6 @@ program has none of that to compare. The bytes are the same measure, and use the
 ``swarmvm.footprint.measure``."""
 
 import argparse
-import json
 import re
 import statistics
 import subprocess
@@ -46,6 +45,7 @@ from baseline import BASELINE, baseline_tree
 from conformance import c_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS
 from swarmvm.footprint import measure as footprint
+from figures import add_json_option, write_figures
 
 KILOBOT_VM = ("edge", "if-quiet", "uniform")
 FLASH_ONLY = ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"]    # as the Kilobot Makefile
@@ -96,7 +96,7 @@ def summary(batch, counts):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as workdir:
@@ -134,10 +134,7 @@ def main():
              min(r["core_flash"]["current_Os"] for r in rows), max(r["core_flash"]["current_Os"] for r in rows),
              min(r["core_flash"]["baseline"] for r in rows), max(r["core_flash"]["baseline"] for r in rows),
              min(r["vm_ram"]["current"] for r in rows), max(r["vm_ram"]["current"] for r in rows)))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=STEPS, rows=rows), indent=1,
-                                              sort_keys=True) + "\n")
+    write_figures(args.json, dict(baseline=BASELINE, steps=STEPS, rows=rows))
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ each supervisor's baseline and current programs run alternately. Run with `make 
 `python benchmarks/c_host.py`."""
 
 import argparse
-import json
 import subprocess
 import tempfile
 import time
@@ -29,6 +28,7 @@ from conformance import c_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS, Batch, Run, reference
 from swarmvm.pipeline import compile_inputs
 from swarmvm.script import random_script
+from figures import add_json_option, write_figures
 
 TRACE_STEPS = 20000
 ROUNDS = 3
@@ -67,7 +67,7 @@ def trace_seconds(exe):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as workdir:
@@ -111,10 +111,7 @@ def main():
              min(r["trace_ratio"] for r in rows), max(r["trace_ratio"] for r in rows),
              "{:,}".format(int(min(r["trace"]["current"] for r in rows))),
              "{:,}".format(int(max(r["trace"]["current"] for r in rows)))))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, trace_steps=TRACE_STEPS, rows=rows),
-                                              indent=1) + "\n")
+    write_figures(args.json, dict(baseline=BASELINE, trace_steps=TRACE_STEPS, rows=rows))
 
 
 if __name__ == "__main__":

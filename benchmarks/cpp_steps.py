@@ -22,7 +22,6 @@ published source.
 """
 
 import argparse
-import json
 import os
 import shutil
 import subprocess
@@ -38,6 +37,7 @@ from swarmvm import api  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from baseline import BASELINE, baseline_tree  # noqa: E402
 import yaml  # noqa: E402
+from figures import add_json_option, write_figures  # noqa: E402
 
 CORPUS = sorted((ROOT / "tests" / "corpus").glob("*/*.yaml"))
 FLAGS = ["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
@@ -137,7 +137,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=100000, help="steps per timed round of the driver")
     parser.add_argument("--compiler", default="g++")
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -173,10 +173,7 @@ def main():
                                     geometric_mean([r["ratio_straightforward"] for r in rows])))
     with tempfile.TemporaryDirectory() as tmp:
         exact = sct_rows(args.compiler, args.steps, Path(tmp))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, steps=args.steps, rows=rows, exact=exact), indent=1)
-                                   + "\n")
+    write_figures(args.json, dict(baseline=BASELINE, steps=args.steps, rows=rows, exact=exact))
 
 
 if __name__ == "__main__":

@@ -8,14 +8,13 @@ the shared machine runs); wall seconds are shown too. The median of ``repeats`` 
 ``python benchmarks/energy_study.py [repeats] [--json FILE]``."""
 
 import argparse
-import json
 import resource
 import statistics
 import time
-from pathlib import Path
 
 from swarmvm.studies.energy_replenishment import plugin, trial
 from swarmvm.studies.energy_replenishment.params import Params
+from figures import add_json_option, write_figures
 
 CASES = (("fixed, 6 workers", Params()),
          ("mobile, 6 workers + 6 chargers", Params(strategy="mobile", chargers=6)),
@@ -35,7 +34,7 @@ def timed(params, library, baseline):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("repeats", nargs="?", type=int, default=5)
-    parser.add_argument("--json", help="also write the rows here")
+    add_json_option(parser)
     args = parser.parse_args()
     library = plugin.build()
     rows = []
@@ -52,9 +51,7 @@ def main():
         print("| %s | %.3f | %.3f | %.3f | %.3f | %.2f | %.3f |" % (name, row["cpu_s"], row["wall_s"], row["empty_cpu_s"],
                                                                   row["empty_wall_s"], row["ratio"],
                                                                   row["cpu_s"] - row["empty_cpu_s"]))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    write_figures(args.json, rows)
 
 
 if __name__ == "__main__":

@@ -7,7 +7,6 @@ target: the page opens in under 2 s. Prints one line per figure; ``--json FILE``
 them. Without Chromium the browser's figures are left out, and a line says why."""
 
 import argparse
-import json
 import sys
 import tempfile
 import time
@@ -18,6 +17,7 @@ sys.path.insert(0, str(ROOT / "tests" / "inspect"))
 
 from browser import Browser, missing  # noqa: E402
 from swarmvm import api  # noqa: E402
+from figures import add_json_option, write_figures  # noqa: E402
 
 SUPERVISOR = str(ROOT / "examples" / "energy_worker" / "supervisor.yaml")
 ROBOTS, STEPS = 20, 10_000
@@ -59,7 +59,7 @@ def browser_figures(page: Path) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     with tempfile.TemporaryDirectory(prefix="swarmvm-inspect-bench-") as folder:
         traces = write_traces(Path(folder), ROBOTS, STEPS)
@@ -78,9 +78,7 @@ def main() -> None:
                  figures["step_s"] * 1000, figures["end_s"]))
     else:
         print("Chromium: not measured: %s" % why)
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(figures, indent=1, sort_keys=True) + "\n")
+    write_figures(args.json, figures)
 
 
 if __name__ == "__main__":

@@ -10,6 +10,8 @@ import argparse
 import json
 from pathlib import Path
 
+from figures import add_json_option, write_figures
+
 BUILD = Path(__file__).resolve().parent.parent / "build"
 KILOBOT_CORE = 4096         # bytes: "at most 4 kB"
 CAPBOT_CORE = 3072
@@ -80,7 +82,7 @@ def targets() -> list[dict]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--json", help="also write the rows to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     rows = targets()
     print("Issue 13 scorecard (worst supervisor in brackets)")
@@ -95,8 +97,7 @@ def main() -> None:
     print("issue 13: %d of %d measured targets met%s%s" % (
         len(judged) - len(missed), len(judged), "; NOT met: " + ", ".join(missed) if missed else "",
         "; not measured: " + ", ".join(unmeasured) if unmeasured else ""))
-    if args.json:
-        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    write_figures(args.json, rows)
 
 
 if __name__ == "__main__":

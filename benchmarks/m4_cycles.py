@@ -26,7 +26,6 @@ which only a program reading its own timer at full speed can do in minutes; the 
 checks every trace against the Python reference."""
 
 import argparse
-import json
 import tempfile
 from pathlib import Path
 
@@ -36,6 +35,7 @@ from step_costs import DEFAULT, DENSITY, SEED, STEPS, benchmark_batch, checked_c
 from baseline import BASELINE, baseline_tree
 from conformance import c_harness, qemu_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS
+from figures import add_json_option, write_figures
 
 
 # The generated CapBot application's features (templates/capbot/CMakeLists.txt.j2) with the
@@ -56,7 +56,7 @@ def measure(batch, workdir, root=None):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as workdir:
@@ -83,10 +83,7 @@ def main():
     ratios = [r["ratio"] for r in rows]
     print("M4 summary: %.2fx fewer instructions per step than the baseline (geometric mean; %.2f-%.2f)"
           % (math.exp(sum(math.log(x) for x in ratios) / len(ratios)), min(ratios), max(ratios)))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(unit="instructions (QEMU -icount shift=10)", baseline=BASELINE,
-                                                   steps=STEPS, seed=SEED, density=DENSITY, rows=rows), indent=2) + "\n")
+    write_figures(args.json, dict(unit="instructions (QEMU -icount shift=10)", baseline=BASELINE, steps=STEPS, seed=SEED, density=DENSITY, rows=rows))
 
 
 if __name__ == "__main__":

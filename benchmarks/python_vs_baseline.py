@@ -11,7 +11,6 @@ and a summary line with the smallest ratios against issue 13's targets; ``--json
 writes the figures."""
 
 import argparse
-import json
 import random
 import sys
 import time
@@ -26,6 +25,7 @@ from conformance.cases import SUPERVISORS  # noqa: E402
 from swarmvm.pipeline import compile_inputs  # noqa: E402
 from swarmvm.runtime import python_vm  # noqa: E402
 from swarmvm.script import random_script  # noqa: E402
+from figures import add_json_option, write_figures  # noqa: E402
 
 STEPS = 3000
 LOADS = 100
@@ -104,7 +104,7 @@ def measure_case(path: str, current, baseline, scratch: Path) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--json", help="also write the figures to this file")
+    add_json_option(parser)
     parser.add_argument("--scratch", default=str(ROOT / "build" / "bench"), help="folder for the baseline's files")
     parser.add_argument("--only", default="", help="only the supervisors whose name holds this")
     args = parser.parse_args()
@@ -130,10 +130,7 @@ def main() -> None:
     print("for information: SCT steps %s, SCT exact-mode steps %s the baseline's SCT" % tuple(
         "%.2f-%.2fx" % (min(r[k] / r[k + "_baseline"] for r in rows), max(r[k] / r[k + "_baseline"] for r in rows))
         for k in ("sct", "exact")))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(dict(baseline=BASELINE, targets=TARGETS, rows=rows), indent=1,
-                                              sort_keys=True) + "\n")
+    write_figures(args.json, dict(baseline=BASELINE, targets=TARGETS, rows=rows))
 
 
 if __name__ == "__main__":

@@ -8,11 +8,12 @@ prints exact steps per second, best of three, and the ratio (issue 24 asks for a
 uav, where it was slowest, and no supervisor slower)."""
 
 import argparse
-import json
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+from figures import add_json_option, write_figures
 
 ROOT = Path(__file__).resolve().parent.parent
 BASELINE = "7f1712f"
@@ -59,7 +60,7 @@ def baseline_folder(into):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--json", help="also write the rows here")
+    add_json_option(parser)
     parser.add_argument("--steps", type=int, default=STEPS)
     args = parser.parse_args()
     rows = []
@@ -71,9 +72,7 @@ def main():
             now, then = rate(ROOT / "runtime_py", str(path), args.steps), rate(old, str(path), args.steps)
             rows.append({"supervisor": path.stem, "now": now, "baseline": then, "ratio": now / then})
             print("| %s | %.0f | %.0f | %.2fx |" % (path.stem, now, then, now / then))
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    write_figures(args.json, rows)
 
 
 if __name__ == "__main__":
