@@ -13,10 +13,11 @@ import json
 import click
 
 from .. import terminal
-from ..options import SEED, FiniteFloat
+from ..options import SEED, SEED_MAX, FiniteFloat
 from . import energy_commands
 from .drone_delivery.params import RULES, Params
 from .extra import need_studies_extra
+from .seeds import RUNS, sweep_seeds
 
 # Help for the options generated from Params (one per field; defaults are Table 2's).
 HELP = dict(
@@ -114,7 +115,7 @@ def sim_uav(mode, as_json, **values):
               help="Threshold-rule runs at these thresholds; '' for none.")
 @click.option("--taus", default="5,10,15,20,25,30", show_default=True, type=FloatList(FiniteFloat(min=0, min_open=True)),
               help="Inter-arrival means (minutes).")
-@click.option("--runs", default=20, show_default=True, type=click.IntRange(1), help="Runs per configuration.")
+@click.option("--runs", default=20, show_default=True, type=RUNS, help="Runs per configuration.")
 @click.option("--first-seed", default=1, show_default=True, type=SEED, help="Runs use seeds first..first+runs-1.")
 @click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local processes.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
@@ -128,7 +129,7 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
     bad = [r for r in rule_list if r not in grid_sweep.LEARNING_RULES]
     if bad:
         terminal.fail("--rules: unknown rule %r (one of %s)" % (bad[0], ", ".join(grid_sweep.LEARNING_RULES)))
-    specs = grid_sweep.grid(make_params(values), rule_list, thresholds, taus, range(first_seed, first_seed + runs))
+    specs = grid_sweep.grid(make_params(values), rule_list, thresholds, taus, sweep_seeds(first_seed, runs, SEED_MAX))
     ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 

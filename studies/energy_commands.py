@@ -13,8 +13,9 @@ import click
 from .. import terminal
 from ..errors import InputError
 from ..options import FiniteFloat
-from .energy_replenishment.params import MAX_DURATION_S, STRIP_HALF_WIDTH_M
+from .energy_replenishment.params import MAX_DURATION_S, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
 from .extra import need_studies_extra
+from .seeds import RUNS, sweep_seeds
 
 # The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
 # spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
@@ -76,7 +77,8 @@ def fail(message: str, status: int = 2):
 @click.option("--workers", default=6, show_default=True, type=click.IntRange(1, 100), help="n_w.")
 @click.option("--chargers", default=4, show_default=True, type=click.IntRange(1, 100), help="n_m (mobile strategy).")
 @rate_options
-@click.option("--seed", default=1, show_default=True, type=click.IntRange(0, 2 ** 31 - 1), help="ARGoS random seed.")
+@click.option("--seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
+              help="ARGoS random seed (0 would have ARGoS seed from the clock).")
 @click.option("--trace", type=click.Path(dir_okay=False), default=None, help="Write every robot's step as CSV here.")
 @click.option("--vm-traces", type=click.Path(file_okay=False), default=None,
               help="Write each robot's VM trace into this folder as SUPERVISOR/ROBOT.trace (swarmvm inspect reads them).")
@@ -104,8 +106,9 @@ def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **v
 @click.command("energy")
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
 @click.option("--figures", default="9,10,11,12", show_default=True, help="The seed's figures whose grids to run.")
-@click.option("--runs", default=50, show_default=True, type=click.IntRange(1), help="Trials (seeds) per configuration.")
-@click.option("--first-seed", default=1, show_default=True, type=click.IntRange(0), help="Seeds first..first+runs-1.")
+@click.option("--runs", default=50, show_default=True, type=RUNS, help="Trials (seeds) per configuration.")
+@click.option("--first-seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
+              help="Seeds first..first+runs-1.")
 @click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local ARGoS processes at once.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
@@ -118,7 +121,7 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
     bad = [f for f in wanted if f not in grid_sweep.FIGURES]
     if bad or not wanted:
         fail("--figures: unknown figure %r (some of %s)" % (bad[0] if bad else figures, ", ".join(grid_sweep.FIGURES)))
-    specs = grid_sweep.grid(params_from(values), wanted, range(first_seed, first_seed + runs))
+    specs = grid_sweep.grid(params_from(values), wanted, sweep_seeds(first_seed, runs, MAX_SEED))
     try:
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     except (plugin.BuildError, trial.TrialError) as exc:

@@ -10,6 +10,13 @@ from ..fields import non_finite
 
 RULES = ("least-confident", "most-confident", "random", "threshold")
 TICKS_PER_WEEK = 7 * 24 * 3600          # one tick is one simulated second
+# What a trial holds in memory grows with these (each drone's VM, policy and state; the accuracy
+# samples of each drone, drawn once per trial and kept; the orders of a run, all drawn at its
+# start): past them it is refused before it starts rather than filling the machine. What each
+# costs is in docs/limits.md.
+MAX_DRONES = 10_000
+MAX_ACCURACY_CELLS = 10_000_000         # drones x accuracy samples
+MAX_ORDERS = 10_000_000                 # expected orders of the measured run, or of the pretraining
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,6 +83,22 @@ class Params:
                   ("advert-period-s", self.advert_period_s >= 2, "an auction takes 2 ticks: must be >= 2"),
                   ("accuracy-samples", self.accuracy_samples >= 1, "must be at least 1")]
         for option, ok, message in checks:
+            if not ok:
+                raise ValueError("--%s: %s" % (option, message))
+        self._check_size()
+
+    def _check_size(self) -> None:
+        """The limits on what a trial keeps in memory (MAX_DRONES and the two below it)."""
+        cells = self.drones * self.accuracy_samples
+        orders = max(self.weeks, self.pretrain_weeks) * self.week_s / max(60.0 * self.tau_min, 1.0)
+        for option, ok, message in (
+                ("drones", self.drones <= MAX_DRONES, "must be at most {:,}".format(MAX_DRONES)),
+                ("accuracy-samples", cells <= MAX_ACCURACY_CELLS,
+                 "{:,} drones x {:,} samples pass {:,}, the most a trial keeps".format(
+                     self.drones, self.accuracy_samples, MAX_ACCURACY_CELLS)),
+                ("pretrain-weeks" if self.pretrain_weeks > self.weeks else "weeks", orders <= MAX_ORDERS,
+                 "about {:,.0f} orders a run (weeks x week-s / tau-min) pass {:,}, the most a trial draws".format(
+                     orders, MAX_ORDERS))):
             if not ok:
                 raise ValueError("--%s: %s" % (option, message))
 

@@ -14,6 +14,9 @@ TICKS_PER_SECOND = 10
 # ARGoS keeps an experiment's length as a 32-bit count of clock ticks (its simulator.cpp casts
 # length x ticks_per_second to UInt32): a longer one would wrap round, or never end.
 MAX_DURATION_S = (2 ** 32 - 1) // TICKS_PER_SECOND
+# The seeds a trial can give ARGoS as its random_seed: a 32-bit number, 0 excluded (ARGoS then
+# seeds from the clock, and the trial would not repeat).
+MIN_SEED, MAX_SEED = 1, 2 ** 32 - 1
 STRIP_HALF_WIDTH_M = 0.15           # the strips are 0.3 m wide (argos/energy_agent.h)
 
 
@@ -55,7 +58,7 @@ class Params:
                   (self.steering_noise >= 0, "steering noise must not be negative"),
                   (0 <= self.strip_inset_m <= STRIP_HALF_WIDTH_M,
                    "the strip inset must be in [0, %g] m (half a strip's width)" % STRIP_HALF_WIDTH_M),
-                  (0 <= self.seed < 2 ** 31, "seed must be in [0, 2^31)")]
+                  (MIN_SEED <= self.seed <= MAX_SEED, "seed must be in [%d, %d] (ARGoS seeds 0 from the clock)" % (MIN_SEED, MAX_SEED))]
         for ok, message in checks:
             if not ok:
                 raise ValueError(message)

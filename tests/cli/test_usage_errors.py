@@ -43,7 +43,7 @@ CASES = [
     (["script", EXAMPLE, "--seed", "-1"], "--seed: -1 is not in the range 0<=x<=4294967295."),
     (["sim", "uav", "--seed", "-1"], "--seed: -1 is not in the range 0<=x<=4294967295."),   # was a numpy traceback
     (["sweep", "uav", "-o", "out", "--first-seed", "-1"], "--first-seed: -1 is not in the range 0<=x<=4294967295."),
-    (["sim", "energy", "--seed", "-1"], "--seed: -1 is not in the range 0<=x<=2147483647."),
+    (["sim", "energy", "--seed", "0"], "--seed: 0 is not in the range 1<=x<=4294967295."),   # ARGoS seeds 0 from the clock
     (["footprint", "x.elf", "--kilobot-flash", "-5"], "--kilobot-flash: -5 is not in the range x>=0."),
     (["sim", "uav", "--xi", "inf"], "--xi: inf is not a finite number."),
     # a bad type

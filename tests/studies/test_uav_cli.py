@@ -81,3 +81,24 @@ def test_without_the_studies_extra_each_verb_says_how_to_get_it(monkeypatch):
         result = CliRunner().invoke(main, verb)
         assert result.exit_code == 2, verb
         assert result.output == 'swarmvm: error: the studies need pandas: pip install "swarmvm[studies]"\n', verb
+
+
+@pytest.mark.parametrize("options,message", [
+    (["--drones", "10001"], "--drones: must be at most 10,000"),
+    (["--drones", "10000", "--accuracy-samples", "1001"],
+     "--accuracy-samples: 10,000 drones x 1,001 samples pass 10,000,000, the most a trial keeps"),
+    (["--weeks", "2000", "--tau-min", "1"],
+     "--weeks: about 20,160,000 orders a run (weeks x week-s / tau-min) pass 10,000,000, the most a trial draws"),
+    (["--pretrain-weeks", "20000"],
+     "--pretrain-weeks: about 10,080,000 orders a run (weeks x week-s / tau-min) pass 10,000,000, the most a trial draws"),
+    (["--weeks", "100000000", "--drones", "1000000000"], "--drones: must be at most 10,000")])
+def test_sim_refuses_a_trial_too_large_for_memory_before_it_starts(options, message):
+    """--drones 100000 --weeks 0 took 11 GB and a minute; a huge --weeks drew its orders until memory ran out."""
+    result = CliRunner().invoke(main, ["sim", "uav", *options])
+    assert result.exit_code == 2 and result.output == "swarmvm: error: %s\n" % message
+
+
+def test_the_largest_trials_allowed_are_accepted():
+    from swarmvm.studies.drone_delivery.params import MAX_ACCURACY_CELLS, MAX_DRONES, MAX_ORDERS, Params
+    Params(drones=MAX_DRONES, accuracy_samples=MAX_ACCURACY_CELLS // MAX_DRONES)
+    Params(weeks=MAX_ORDERS * 20 * 60 // Params().week_s, tau_min=20.0)
