@@ -129,7 +129,12 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
     bad = [r for r in rule_list if r not in grid_sweep.LEARNING_RULES]
     if bad:
         terminal.fail("--rules: unknown rule %r (one of %s)" % (bad[0], ", ".join(grid_sweep.LEARNING_RULES)))
-    specs = grid_sweep.grid(make_params(values), rule_list, thresholds, taus, sweep_seeds(first_seed, runs, SEED_MAX))
+    # The other options are checked at the largest tau (the fewest orders), each tau by the grid.
+    base = make_params(dict(values, tau_min=max(taus)) if taus else values)
+    try:
+        specs = grid_sweep.grid(base, rule_list, thresholds, taus, sweep_seeds(first_seed, runs, SEED_MAX))
+    except ValueError as exc:           # a tau the other parameters cannot take
+        terminal.fail(exc)
     ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 

@@ -121,7 +121,10 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
     bad = [f for f in wanted if f not in grid_sweep.FIGURES]
     if bad or not wanted:
         fail("--figures: unknown figure %r (some of %s)" % (bad[0] if bad else figures, ", ".join(grid_sweep.FIGURES)))
-    specs = grid_sweep.grid(params_from(values), wanted, sweep_seeds(first_seed, runs, MAX_SEED))
+    try:
+        specs = grid_sweep.grid(params_from(values), wanted, sweep_seeds(first_seed, runs, MAX_SEED))
+    except ValueError as exc:           # a configuration a figure derives out of range
+        fail(str(exc))
     try:
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     except (plugin.BuildError, trial.TrialError) as exc:

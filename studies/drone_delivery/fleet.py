@@ -57,7 +57,8 @@ def initial_classifier(params: Params, rng: np.random.Generator):
     each in a random order (the published runs shuffle: the intercept's sign varies)."""
     classifier = linear_classifier_class()(MEAN, SCALE, alpha=params.alpha)
     order = [int(k) for _ in range(params.init_epochs) for k in rng.permutation(2)]
-    classifier.fit([SEED_POINTS[k] for k in order], [SEED_LABELS[k] for k in order], max_iter=1, tol=None)
+    if order:                   # --init-epochs 0: no initial fit, the policy starts at zero
+        classifier.fit([SEED_POINTS[k] for k in order], [SEED_LABELS[k] for k in order], max_iter=1, tol=None)
     return classifier
 
 

@@ -25,11 +25,13 @@ class Orders:
 def draw_orders(params: Params, rng: np.random.Generator, horizon: int) -> Orders:
     """Every order arriving before ``horizon``."""
     mean = params.tau_min * 60.0
-    chunk = max(16, int(1.2 * horizon / mean) + 16)
+    chunk = int(min(1.2 * horizon / mean, horizon)) + 16     # at most one order a tick
     gaps = [np.zeros(0, dtype=np.int64)]
     total = 0
     while total < horizon:
-        more = np.maximum(np.ceil(rng.exponential(mean, chunk)), 1).astype(np.int64)
+        # A gap is at least a tick, and at most the horizon: a longer one ends the draw as well, and
+        # would not fit the integer ticks (a tau of 1e300 minutes).
+        more = np.clip(np.ceil(rng.exponential(mean, chunk)), 1, max(horizon, 1)).astype(np.int64)
         gaps.append(more)
         total += int(more.sum())
     ticks = np.concatenate([[0], np.cumsum(np.concatenate(gaps))])

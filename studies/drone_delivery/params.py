@@ -17,6 +17,13 @@ TICKS_PER_WEEK = 7 * 24 * 3600          # one tick is one simulated second
 MAX_DRONES = 10_000
 MAX_ACCURACY_CELLS = 10_000_000         # drones x accuracy samples
 MAX_ORDERS = 10_000_000                 # expected orders of the measured run, or of the pretraining
+# The charging model keeps a table of 100 - SoC over the ticks of a full charge (energy.keep_table)
+# and a flight counts its moves in integer ticks: both are bounded by what is physically a long
+# time, so that extreme options are one line here instead of an overflow in the trial.
+MAX_FULL_CHARGE_S = TICKS_PER_WEEK      # C / (P_c gamma_c)
+MAX_FLIGHT_S = TICKS_PER_WEEK           # d-max-m, deliver-radius-m, home-radius-m flown at speed-ms
+MAX_INIT_EPOCHS = 10_000                # each an SGD pass in pure Python, for every drone
+MAX_DISTANCE_M = 2.0e7                  # half the Earth's circumference: no delivery is farther
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,12 +78,17 @@ class Params:
                   ("rotors", self.rotors >= 1, "must be at least 1"),
                   ("charger-eff", 0 < self.charger_eff <= 1, "must lie in (0, 1]"),
                   ("home-radius-m", self.home_radius_m >= 0, "must not be negative"),
-                  ("alpha", self.alpha >= 0, "must not be negative"),
-                  ("init-epochs", self.init_epochs >= 0, "must not be negative"),
+                  # at 1 or more the first update's L2 shrink, 1 - alpha^0.75, zeroes the policy
+                  ("alpha", 0 < self.alpha < 1, "must lie in (0, 1)"),
+                  ("init-epochs", 0 <= self.init_epochs <= MAX_INIT_EPOCHS,
+                   "must lie in [0, {:,}]".format(MAX_INIT_EPOCHS)),
                   ("weeks", self.weeks >= 0 and self.pretrain_weeks >= 0, "must not be negative"),
                   ("week-s", self.week_s >= 1, "must be positive"),
                   ("soh-min", 0 < self.soh_min <= self.soh_max <= 1, "need 0 < soh-min <= soh-max <= 1"),
                   ("d-min-m", 0 < self.d_min_m <= self.d_max_m, "need 0 < d-min-m <= d-max-m"),
+                  *((name, getattr(self, name.replace("-", "_")) <= MAX_DISTANCE_M,
+                     "must be at most {:,.0f} m (half the Earth's circumference)".format(MAX_DISTANCE_M))
+                    for name in ("d-max-m", "deliver-radius-m", "home-radius-m")),
                   ("m-min-kg", 0 <= self.m_min_kg <= self.m_max_kg, "need 0 <= m-min-kg <= m-max-kg"),
                   ("xi", 0 < self.xi < 1, "must lie in (0, 1)"),
                   ("threshold", 0 <= self.threshold <= 1, "must lie in [0, 1]"),
@@ -86,6 +98,7 @@ class Params:
             if not ok:
                 raise ValueError("--%s: %s" % (option, message))
         self._check_size()
+        self._check_model()
 
     def _check_size(self) -> None:
         """The limits on what a trial keeps in memory (MAX_DRONES and the two below it)."""
@@ -101,6 +114,27 @@ class Params:
                      orders, MAX_ORDERS))):
             if not ok:
                 raise ValueError("--%s: %s" % (option, message))
+
+    def _check_model(self) -> None:
+        """The derived constants the trial computes with, at the extremes it reaches, as numbers
+        it can take: each option is in range alone, but together they may not be."""
+        try:
+            drain = self.drain_per_tick(self.m_max_kg, self.soh_min)
+        except (OverflowError, ZeroDivisionError):     # a power or a capacity beyond floating point
+            drain = math.inf
+        charge = self.charger_eff * self.charger_w / (3600.0 * self.capacity_wh)
+        flight = max(self.d_max_m, self.deliver_radius_m, self.home_radius_m) / self.speed_ms
+        for options, ok, message in (
+                (("frame-kg", "battery-kg", "m-max-kg", "gravity", "rotors", "air-density", "disc-m2", "capacity-wh",
+                  "soh-min"), math.isfinite(drain),
+                 "give the heaviest flight a drain (equations 14 and 15) that is not a finite number"),
+                (("capacity-wh", "charger-w", "charger-eff"), 0.0 < charge < 1.0 and self.full_charge_s <= MAX_FULL_CHARGE_S,
+                 "a full charge, 3600 capacity-wh / (charger-w charger-eff), must take more than 1 s and at most "
+                 "{:,} s".format(MAX_FULL_CHARGE_S)),
+                (("d-max-m", "deliver-radius-m", "home-radius-m", "speed-ms"), flight <= MAX_FLIGHT_S,
+                 "each distance must be flown within {:,} s".format(MAX_FLIGHT_S))):
+            if not ok:
+                raise ValueError("%s: %s" % (", ".join("--" + option for option in options), message))
 
     # -- derived constants ------------------------------------------------------------------------
     @property

@@ -26,10 +26,17 @@ SEED_THRESHOLDS = (0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 
 def grid(base: Params, rules: Sequence[str] = LEARNING_RULES, thresholds: Sequence[float] = SEED_THRESHOLDS,
          taus: Sequence[float] = SEED_TAUS, seeds: Iterable[int] = range(1, 21)) -> List[Params]:
-    """Learning rules x tau x seeds, plus the threshold rule at each threshold x tau x seeds."""
+    """Learning rules x tau x seeds, plus the threshold rule at each threshold x tau x seeds. A tau
+    the other parameters cannot take (too many orders at it) is a ValueError naming ``--taus``."""
     seeds = list(seeds)
     cases = [dict(rule=r) for r in rules] + [dict(rule="threshold", threshold=h) for h in thresholds]
-    return [base.replace(tau_min=float(tau), seed=seed, **case) for case in cases for tau in taus for seed in seeds]
+    at_tau = []
+    for tau in taus:
+        try:
+            at_tau.append(base.replace(tau_min=float(tau)))
+        except ValueError as exc:
+            raise ValueError("--taus: at %g minutes, %s" % (tau, exc)) from None
+    return [p.replace(seed=seed, **case) for case in cases for p in at_tau for seed in seeds]
 
 
 def trial_key(params: Params) -> str:

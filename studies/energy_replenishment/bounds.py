@@ -9,7 +9,17 @@ The models assume no interference and optimal paths, so they bound what a simula
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+
+
+# The most transfer periods best_transfer_period tries (one every 0.1 s up to what a charger can
+# give): a larger charger capacity is refused rather than searched for minutes or for ever.
+MAX_TRANSFER_PERIODS = 100_000
+
+
+class Infeasible(ValueError):
+    """No cycle of the strategy exists at these rates: the bound is undefined (a trial still runs)."""
 
 
 @dataclass(frozen=True)
@@ -50,9 +60,12 @@ def fixed_bound(r: Rates) -> Bound:
     """Equations 1-3: a worker leaves the base full, works until it has just the energy to come
     back, recharges to full, and repeats."""
     commute = r.commute_s
+    if r.charge <= r.core:
+        raise Infeasible("the charging rate %g does not exceed the core rate %g: a robot in the charging strip never "
+                         "gains energy" % (r.charge, r.core))
     work_s = (r.capacity - 2 * (r.core + r.move) * commute) / (r.core + r.work)
     if work_s <= 0:
-        raise ValueError("a worker cannot reach the work region and come back on one charge "
+        raise Infeasible("a worker cannot reach the work region and come back on one charge "
                          "(capacity %g, commute %.2f s)" % (r.capacity, commute))
     charge_s = r.capacity / (r.charge - r.core)
     cycle_s = work_s + 2 * commute + charge_s
@@ -108,11 +121,11 @@ def mobile_bound(w: Rates, m: MobileRates, transfer_s: float) -> MobileBound:
     xi = 1 - m.loss
     received = min(transfer_s * (xi * m.transfer - w.core), w.capacity)
     desired = transfer_s * (m.core + m.transfer) + 2 * w.commute_s * (m.core + m.move)
-    if received <= 0 or desired > m.capacity:
+    if received <= 0 or desired > m.capacity or m.charge <= m.core:    # the last: the charger never refills
         return MobileBound(transfer_s, False, False, 0.0, 0.0, 0.0, 0.0, 0.0)
     work_s = received / (w.core + w.work)
     worker_cycle_min = work_s + transfer_s
-    worker_cycle_max = received / w.core + transfer_s
+    worker_cycle_max = received / w.core + transfer_s if w.core > 0 else math.inf   # no core rate: rests for ever
     charger_cycle = desired / (m.charge - m.core) + transfer_s + 2 * w.commute_s
     if charger_cycle >= worker_cycle_max:
         return MobileBound(transfer_s, False, True, charger_cycle, 0.0, 0.0, 0.0, 0.0)
@@ -132,13 +145,23 @@ def best_transfer_period(w: Rates, m: MobileRates, step_s: float = 0.1) -> Mobil
     (the seed expects the longest restless period to spend the least energy commuting per unit
     of work; restless periods share one duty cycle until the worker's capacity caps what a
     transfer can give). None when no period is feasible. Periods are tried every ``step_s`` s."""
-    longest = m.capacity / (m.core + m.transfer)      # a charger cannot give for longer
-    periods = (round(k * step_s, 9) for k in range(1, int(longest / step_s) + 1))
+    periods = (round(k * step_s, 9) for k in range(1, transfer_periods(m, step_s) + 1))
     candidates = [b for b in (mobile_bound(w, m, t) for t in periods) if b.feasible]
     if not candidates:
         return None
     best = max(b.duty_cycle for b in candidates)
     return [b for b in candidates if b.duty_cycle >= best - 1e-9][-1]
+
+
+def transfer_periods(m: MobileRates, step_s: float = 0.1) -> int:
+    """How many periods best_transfer_period tries: every ``step_s`` up to the longest a charger
+    can give for; a ValueError past MAX_TRANSFER_PERIODS."""
+    longest = m.capacity / (m.core + m.transfer)      # a charger cannot give for longer
+    if not longest / step_s <= MAX_TRANSFER_PERIODS:
+        raise ValueError("a charger of capacity %g giving %g a second (and %g to its core) could give for %g s: "
+                         "the search of transfer periods stops at %g s" % (
+                             m.capacity, m.transfer, m.core, longest, MAX_TRANSFER_PERIODS * step_s))
+    return int(longest / step_s)
 
 
 def strategy_bound(strategy: str, w: Rates, m: MobileRates) -> Bound | MobileBound | None:

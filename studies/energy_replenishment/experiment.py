@@ -19,7 +19,10 @@ CHARGING_STRIP = (-0.78, -0.52)   # where robots start: inside the strip (x from
 
 
 def _fmt(value: float) -> str:
-    return "%.10g" % value
+    """The shortest text ARGoS reads back as the same double ("600", "0.005"): a rounded one could
+    differ from the trial's parameters, or pass the largest double and fail to parse."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
 
 
 def _controller(parent: ET.Element, kind: str, library: str, p: Params, capacity: float, baseline: bool,
@@ -80,12 +83,14 @@ def experiment(p: Params, library: Path, result: Path, trace: Path | None = None
                   transfer=_fmt(p.per_step(p.transfer_rate)), loss=_fmt(p.transfer_loss))
     ET.SubElement(loop, "output", path=str(result), trace=str(trace) if trace else "")
     side = 1.6
-    arena = ET.SubElement(root, "arena", size="%s, %s, 1" % (_fmt(side + 2 * WALL), _fmt(side + 2 * WALL)),
-                          center="0, 0, 0.5")
-    for name, position, size in (("north", "0, %s, 0" % _fmt((side + WALL) / 2), "%s, %s, 0.1" % (_fmt(side + 2 * WALL), _fmt(WALL))),
-                                 ("south", "0, %s, 0" % _fmt(-(side + WALL) / 2), "%s, %s, 0.1" % (_fmt(side + 2 * WALL), _fmt(WALL))),
-                                 ("east", "%s, 0, 0" % _fmt((side + WALL) / 2), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side))),
-                                 ("west", "%s, 0, 0" % _fmt(-(side + WALL) / 2), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side)))):
+    # the arena's outer side and the walls' centres, to the millimetre as they are meant (1.7, not
+    # the sum's 1.7000000000000002)
+    outer, centre = _fmt(round(side + 2 * WALL, 6)), round((side + WALL) / 2, 6)
+    arena = ET.SubElement(root, "arena", size="%s, %s, 1" % (outer, outer), center="0, 0, 0.5")
+    for name, position, size in (("north", "0, %s, 0" % _fmt(centre), "%s, %s, 0.1" % (outer, _fmt(WALL))),
+                                 ("south", "0, %s, 0" % _fmt(-centre), "%s, %s, 0.1" % (outer, _fmt(WALL))),
+                                 ("east", "%s, 0, 0" % _fmt(centre), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side))),
+                                 ("west", "%s, 0, 0" % _fmt(-centre), "%s, %s, 0.1" % (_fmt(WALL), _fmt(side)))):
         box = ET.SubElement(arena, "box", id="wall_" + name, size=size, movable="false")
         ET.SubElement(box, "body", position=position, orientation="0, 0, 0")
     for prefix, kind in robot_kinds(p).items():

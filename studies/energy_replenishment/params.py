@@ -17,6 +17,12 @@ MAX_DURATION_S = (2 ** 32 - 1) // TICKS_PER_SECOND
 # The seeds a trial can give ARGoS as its random_seed: a 32-bit number, 0 excluded (ARGoS then
 # seeds from the clock, and the trial would not repeat).
 MIN_SEED, MAX_SEED = 1, 2 ** 32 - 1
+# Robots a trial starts with (workers, and chargers with the mobile strategy), each at a random
+# place in the charging strip: ARGoS gives up placing a few more than this (docs/limits.md).
+MAX_ROBOTS = 40
+# Energy capacities (workers' and chargers'): the loop functions sum energies over robots and
+# steps, which must stay finite numbers in their JSON totals.
+MAX_CAPACITY = 1e9
 STRIP_HALF_WIDTH_M = 0.15           # the strips are 0.3 m wide (argos/energy_agent.h)
 
 
@@ -47,12 +53,19 @@ class Params:
                   (1 <= self.workers <= 100, "workers must be 1..100"),
                   (0 <= self.chargers <= 100, "chargers must be 0..100"),
                   (self.strategy == "fixed" or self.chargers >= 1, "the mobile strategy needs at least one charger"),
+                  (self.workers + (self.chargers if self.strategy == "mobile" else 0) <= MAX_ROBOTS,
+                   "at most %d robots start in the charging strip (workers, and chargers with the mobile strategy)"
+                   % MAX_ROBOTS),
                   (self.capacity > 0 and self.charger_capacity > 0, "capacities must be positive"),
+                  (self.capacity <= MAX_CAPACITY and self.charger_capacity <= MAX_CAPACITY,
+                   "capacities must be at most %g" % MAX_CAPACITY),
                   (self.charge_rate > 0 and self.transfer_rate > 0, "charge and transfer rates must be positive"),
                   (0 <= self.transfer_loss < 1, "transfer loss must be in [0, 1)"),
                   (self.move_rate >= 0 and self.core_rate >= 0, "rates must not be negative"),
                   (self.work_rate > 0, "the work rate must be positive (working must spend energy)"),
                   (self.speed_cms > 0 and self.duration_s > 0, "speed and duration must be positive"),
+                  (self.duration_s * TICKS_PER_SECOND >= 1, "duration must be at least one control step, %g s (ARGoS runs an experiment "
+                                    "of 0 steps for ever)" % (1 / TICKS_PER_SECOND)),
                   (self.duration_s <= MAX_DURATION_S, "duration must be at most %d s (ARGoS counts an experiment's "
                                                       "length in 32-bit clock ticks)" % MAX_DURATION_S),
                   (self.steering_noise >= 0, "steering noise must not be negative"),
@@ -62,10 +75,13 @@ class Params:
         for ok, message in checks:
             if not ok:
                 raise ValueError(message)
+        if self.strategy == "mobile":
+            bounds.transfer_periods(self.mobile_rates())    # the bound's search, before ARGoS runs
 
     @property
     def steps(self) -> int:
-        return round(self.duration_s * TICKS_PER_SECOND)
+        """The control steps ARGoS runs: it truncates length x ticks_per_second to an integer."""
+        return int(self.duration_s * TICKS_PER_SECOND)
 
     def per_step(self, rate: float) -> float:
         return rate / TICKS_PER_SECOND
@@ -84,9 +100,13 @@ class Params:
 
     def bound(self) -> bounds.Bound | bounds.MobileBound | None:
         """What the trial is measured against: its strategy's bound (:func:`bounds.strategy_bound`,
-        the same numbers as ``swarmvm bounds energy``); None for mobile chargers that no transfer
-        period can sustain."""
-        return bounds.strategy_bound(self.strategy, self.rates(), self.mobile_rates())
+        the same numbers as ``swarmvm bounds energy``); None when there is none: fixed chargers
+        whose workers cannot commute on one charge, mobile chargers that no transfer period can
+        sustain."""
+        try:
+            return bounds.strategy_bound(self.strategy, self.rates(), self.mobile_rates())
+        except bounds.Infeasible:
+            return None
 
     def replace(self, **changes) -> "Params":
         return dataclasses.replace(self, **changes)

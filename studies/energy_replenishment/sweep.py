@@ -46,10 +46,24 @@ def figure_cases(figure: str, base: Params) -> List[Params]:
     raise ValueError("unknown figure %r (one of %s)" % (figure, ", ".join(FIGURES)))
 
 
+# What a figure's configurations derive from the options given, for the message when one of
+# them is out of range although the options are not.
+DERIVED = {"9": "gives the chargers up to %g times --capacity" % max(CAPACITY_RATIOS),
+           "10": "sets the work rate up to %g times --move-rate" % max(WORKLOAD_RATIOS)}
+
+
 def grid(base: Params, figures: Sequence[str] = FIGURES, seeds: Iterable[int] = range(1, 51)) -> List[Params]:
-    """Every configuration of the figures x seeds, each once."""
+    """Every configuration of the figures x seeds, each once. A configuration out of range is a
+    ValueError naming ``--figures``, the figure and what it derives from the options."""
     seeds = list(seeds)
-    cases = {tuple(sorted(c.to_dict().items())): c for f in figures for c in figure_cases(f, base)}
+    cases = {}
+    for figure in figures:
+        try:
+            configurations = figure_cases(figure, base)
+        except ValueError as exc:
+            raise ValueError("--figures: Figure %s %s: %s" % (figure, DERIVED.get(figure, "sets its own rates"), exc)) \
+                from None
+        cases.update((tuple(sorted(c.to_dict().items())), c) for c in configurations)
     return [c.replace(seed=s) for c in cases.values() for s in seeds]
 
 
