@@ -147,7 +147,12 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
 def plot_uav(results, out, tau):
     """Drone delivery: the seed's Figures 16-20 (and a summary table) from sweep results."""
     need_studies_extra()
+    from . import sweeps
     from .drone_delivery import plots
+    try:
+        sweeps.check_trials(results, "tau_min", "swarmvm sweep uav")
+    except ValueError as exc:
+        terminal.fail(exc)
     paths, missing = plots.draw_all(results, out, tau=tau)
     for path in paths:
         terminal.line(path)

@@ -140,8 +140,14 @@ def plot_energy(results, out, **values):
     """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results, at
     the rates the sweep was given (the same options)."""
     need_studies_extra()
+    from . import sweeps
     from .energy_replenishment import plots
-    paths, missing = plots.draw_all(results, out, params_from(values))
+    base = params_from(values)
+    try:
+        sweeps.check_trials(results, "strategy", "swarmvm sweep energy")
+    except ValueError as exc:
+        fail(str(exc))
+    paths, missing = plots.draw_all(results, out, base)
     for path in paths:
         terminal.line(path)
     for title in missing:

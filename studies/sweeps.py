@@ -13,6 +13,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import shlex
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
@@ -83,6 +84,18 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, scheduler) ->
             pending = {pool.submit(run_trial, spec): name for name, spec in todo}
             for future in as_completed(pending):
                 yield pending[future], future.result()
+
+
+def check_trials(out, column: str, sweep: str) -> None:
+    """A ValueError unless ``out`` holds finished trials of the study whose trials table has
+    ``column`` (``sweep``: the command that writes them), so that a plot of an empty folder, or
+    of the other study's, is one line rather than a traceback or an empty figure."""
+    import pandas as pd
+    files = sorted((Path(out) / "trials").glob("*.parquet"))
+    if not files:
+        raise ValueError("%s: no finished trials in this folder (%s -o %s writes them)" % (out, sweep, shlex.quote(str(out))))
+    if column not in pd.read_parquet(files[0]).columns:
+        raise ValueError("%s: these are not the trials of %s" % (out, sweep))
 
 
 def load(out, names: Sequence[str], index: Sequence[str] = ("key",)) -> Dict[str, "pandas.DataFrame"]:
