@@ -23,6 +23,7 @@ from .inspect_page import ROBOT_STEPS, window
 from .options import SEED, FiniteFloat, OneLineErrors
 from .output import write_outputs
 from .runtime import python_vm
+from .termination import end_verbs_on_sigterm
 
 vm = python_vm()
 
@@ -53,8 +54,10 @@ def max_states_option(what: str) -> Callable[[Callable[..., Any]], Callable[...,
 
 @click.group(cls=OneLineErrors, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="swarmvm")
-def main() -> None:
+@click.pass_context
+def main(ctx: click.Context) -> None:
     """Compile synthesised supervisors into table-driven VMs for swarm robots."""
+    ctx.call_on_close(end_verbs_on_sigterm())
 
 
 @main.command()

@@ -10,11 +10,12 @@ trial done, and a rerun skips done trials."""
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
+import multiprocessing
 import os
 import shlex
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
@@ -80,10 +81,17 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, scheduler) ->
         for name, spec in todo:
             yield name, run_trial(spec)
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            pending = {pool.submit(run_trial, spec): name for name, spec in todo}
-            for future in as_completed(pending):
-                yield pending[future], future.result()
+        # Leaving the pool, normally or by an exception (SIGTERM included, swarmvm.termination),
+        # terminates its processes: a trial still running then stops, and its ARGoS with it,
+        # instead of running on orphaned.
+        with multiprocessing.Pool(workers) as pool:
+            yield from pool.imap_unordered(functools.partial(_keyed, run_trial), todo)
+
+
+def _keyed(run_trial: Callable[[Any], Tables], item: Tuple[str, Any]) -> Tuple[str, Tables]:
+    """(key, tables) of one trial, in a pool's process."""
+    name, spec = item
+    return name, run_trial(spec)
 
 
 def check_trials(out, column: str, sweep: str) -> None:
