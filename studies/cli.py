@@ -14,7 +14,7 @@ import click
 
 from .. import terminal
 from ..options import SEED, SEED_MAX, FiniteFloat
-from . import energy_commands
+from . import energy_commands, sweeps
 from .drone_delivery.params import RULES, Params
 from .extra import need_studies_extra
 from .seeds import RUNS, sweep_seeds
@@ -135,7 +135,10 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
         specs = grid_sweep.grid(base, rule_list, thresholds, taus, sweep_seeds(first_seed, runs, SEED_MAX))
     except ValueError as exc:           # a tau the other parameters cannot take
         terminal.fail(exc)
-    ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
+    try:
+        ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
+    except sweeps.SchedulerError as exc:
+        terminal.fail(exc)
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
@@ -147,7 +150,6 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
 def plot_uav(results, out, tau):
     """Drone delivery: the seed's Figures 16-20 (and a summary table) from sweep results."""
     need_studies_extra()
-    from . import sweeps
     from .drone_delivery import plots
     try:
         sweeps.check_trials(results, "tau_min", "swarmvm sweep uav")

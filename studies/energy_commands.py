@@ -13,6 +13,7 @@ import click
 from .. import terminal
 from ..errors import InputError
 from ..options import FiniteFloat
+from . import sweeps
 from .energy_replenishment.params import MAX_DURATION_S, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
 from .extra import need_studies_extra
 from .seeds import RUNS, sweep_seeds
@@ -129,6 +130,8 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     except (plugin.BuildError, trial.TrialError) as exc:
         fail(str(exc), 1)
+    except sweeps.SchedulerError as exc:
+        fail(str(exc))
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
 
@@ -140,7 +143,6 @@ def plot_energy(results, out, **values):
     """Energy replenishment: the seed's Figures 9-12 (and a summary table) from sweep results, at
     the rates the sweep was given (the same options)."""
     need_studies_extra()
-    from . import sweeps
     from .energy_replenishment import plots
     base = params_from(values)
     try:

@@ -10,6 +10,7 @@ trial done, and a rerun skips done trials."""
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import json
@@ -55,28 +56,47 @@ def run(specs: Sequence[Any], key: Callable[[Any], str], run_trial: Callable[[An
     out = Path(out)
     done = done_keys(out)
     todo = list({key(s): s for s in specs if key(s) not in done}.items())
-    bar = tqdm(total=len(todo), disable=not progress, unit="trial")
-    for name, tables in _results(todo, run_trial, workers, scheduler):
-        write_trial(out, name, tables, names)
-        bar.update(1)
-    bar.close()
+    with _cluster(scheduler if todo else None) as client:
+        bar = tqdm(total=len(todo), disable=not progress, unit="trial")
+        for name, tables in _results(todo, run_trial, workers, client):
+            write_trial(out, name, tables, names)
+            bar.update(1)
+        bar.close()
     return len(todo)
 
 
-def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, scheduler) -> Iterator[Tuple[str, Tables]]:
-    """(key, tables) as trials finish."""
-    if not todo:
+class SchedulerError(Exception):
+    """The Dask scheduler given cannot be reached (the message names --scheduler and why)."""
+
+
+@contextlib.contextmanager
+def _cluster(scheduler) -> Iterator[Any]:
+    """A client of the scheduler (an address, connected here before any trial is counted, and
+    closed after; or a client, used as it is), or None to run locally."""
+    if scheduler is None:
+        yield None
         return
-    if scheduler is not None:
-        from distributed import Client, as_completed as dask_completed
-        client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
-        try:
-            futures = client.map(run_trial, [s for _, s in todo], key=[k for k, _ in todo])
-            for future in dask_completed(futures):
-                yield future.key, future.result()
-        finally:
-            if client is not scheduler:
-                client.close()
+    from distributed import Client
+    if isinstance(scheduler, Client):
+        yield scheduler
+        return
+    try:
+        client = Client(scheduler)
+    except (OSError, ValueError, TypeError) as exc:      # unreachable, or not an address
+        raise SchedulerError("--scheduler: %s" % exc) from None
+    try:
+        yield client
+    finally:
+        client.close()
+
+
+def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> Iterator[Tuple[str, Tables]]:
+    """(key, tables) as trials finish."""
+    if client is not None:
+        from distributed import as_completed as dask_completed
+        futures = client.map(run_trial, [s for _, s in todo], key=[k for k, _ in todo])
+        for future in dask_completed(futures):
+            yield future.key, future.result()
     elif workers <= 1:
         for name, spec in todo:
             yield name, run_trial(spec)
