@@ -17,7 +17,7 @@ from ..options import SEED, SEED_MAX, FiniteFloat
 from . import energy_commands, sweeps
 from .drone_delivery.params import RULES, Params
 from .extra import need_studies_extra
-from .seeds import RUNS, sweep_seeds
+from .sweep_options import PROCESSES, RUNS, sweep_seeds
 
 # Help for the options generated from Params (one per field; defaults are Table 2's).
 HELP = dict(
@@ -117,7 +117,7 @@ def sim_uav(mode, as_json, **values):
               help="Inter-arrival means (minutes).")
 @click.option("--runs", default=20, show_default=True, type=RUNS, help="Runs per configuration.")
 @click.option("--first-seed", default=1, show_default=True, type=SEED, help="Runs use seeds first..first+runs-1.")
-@click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local processes.")
+@click.option("--workers", default=1, show_default=True, type=PROCESSES, help="Local processes.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
 @params_options(exclude=("rule", "threshold", "tau_min", "seed"))

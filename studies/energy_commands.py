@@ -16,7 +16,7 @@ from ..options import FiniteFloat
 from . import sweeps
 from .energy_replenishment.params import MAX_DURATION_S, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
 from .extra import need_studies_extra
-from .seeds import RUNS, sweep_seeds
+from .sweep_options import PROCESSES, RUNS, sweep_seeds
 
 # The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
 # spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
@@ -110,7 +110,7 @@ def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **v
 @click.option("--runs", default=50, show_default=True, type=RUNS, help="Trials (seeds) per configuration.")
 @click.option("--first-seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
               help="Seeds first..first+runs-1.")
-@click.option("--workers", default=1, show_default=True, type=click.IntRange(1), help="Local ARGoS processes at once.")
+@click.option("--workers", default=1, show_default=True, type=PROCESSES, help="Local ARGoS processes at once.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
 @rate_options

@@ -104,7 +104,7 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> It
         # Leaving the pool, normally or by an exception (SIGTERM included, swarmvm.termination),
         # terminates its processes: a trial still running then stops, and its ARGoS with it,
         # instead of running on orphaned.
-        with multiprocessing.Pool(workers) as pool:
+        with multiprocessing.Pool(min(workers, len(todo))) as pool:
             yield from pool.imap_unordered(functools.partial(_keyed, run_trial), todo)
 
 

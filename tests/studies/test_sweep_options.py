@@ -1,5 +1,5 @@
-"""A sweep runs exactly the seeds its study's `sim` takes, checked whole before any trial runs.
-Before: `sweep energy --first-seed 2147483647 --runs 2` ended in a ValueError traceback from the
+"""A sweep runs exactly the seeds its study's `sim` takes, checked whole before any trial runs, with
+bounded runs and local processes. Before: `sweep energy --first-seed 2147483647 --runs 2` ended in a ValueError traceback from the
 grid, `sweep uav` ran seeds past the 32-bit range `sim uav --seed` refuses, and seed 0 had ARGoS
 seed itself from the clock, so that an energy trial did not repeat."""
 
@@ -64,7 +64,7 @@ def test_an_energy_trial_is_never_seeded_from_the_clock():
 @pytest.mark.parametrize("study", STUDIES)
 def test_runs_are_bounded_before_the_grid_is_listed(study, monkeypatch, tmp_path):
     """--runs 1000000000 listed every trial's Params before the first ran, until memory ran out."""
-    from swarmvm.studies.seeds import MAX_RUNS
+    from swarmvm.studies.sweep_options import MAX_RUNS
     module, _, _, narrow = STUDIES[study]
     monkeypatch.setattr(module, "sweep", lambda specs, out, **_: len(specs))
     base = ["sweep", study, "-o", str(tmp_path / "out"), "--no-progress", *narrow, "--runs"]
@@ -72,3 +72,28 @@ def test_runs_are_bounded_before_the_grid_is_listed(study, monkeypatch, tmp_path
     result = CliRunner().invoke(main, base + [str(MAX_RUNS + 1)])
     assert result.exit_code == 2
     assert result.output == "swarmvm: error: --runs: %d is not in the range 1<=x<=%d.\n" % (MAX_RUNS + 1, MAX_RUNS)
+
+
+def test_local_processes_are_bounded_and_never_more_than_the_trials(monkeypatch, tmp_path):
+    """--workers 100000 forked a process per worker before the first trial; now at most 1,024 are
+    taken, and a pool never has more processes than trials to run."""
+    import multiprocessing
+
+    from swarmvm.studies import sweeps
+    from swarmvm.studies.sweep_options import MAX_PROCESSES
+    started, real_pool = [], multiprocessing.Pool
+
+    def pool(processes):
+        started.append(processes)
+        return real_pool(processes)
+    monkeypatch.setattr(sweeps.multiprocessing, "Pool", pool)
+    base = ["sweep", "uav", "-o", str(tmp_path / "out"), "--no-progress", "--rules", "least-confident",
+            "--thresholds", "", "--taus", "20", "--runs", "2", "--weeks", "1", "--week-s", "1000", "--drones", "2",
+            "--accuracy-samples", "5", "--workers"]
+    result = CliRunner().invoke(main, base + [str(MAX_PROCESSES)])
+    assert result.exit_code == 0, result.output
+    assert started == [2]
+    refused = CliRunner().invoke(main, base + [str(MAX_PROCESSES + 1)])
+    assert refused.exit_code == 2
+    assert refused.output == "swarmvm: error: --workers: %d is not in the range 1<=x<=%d.\n" % (
+        MAX_PROCESSES + 1, MAX_PROCESSES)

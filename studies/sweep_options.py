@@ -1,6 +1,7 @@
-"""The runs and seeds of a sweep, ``--first-seed`` .. ``--first-seed + --runs - 1``, checked
-whole before any trial runs: each must be a seed the study's ``sim`` verb takes, so that a sweep
-neither stops part-way on a seed its trials refuse nor runs one that ``sim`` would refuse."""
+"""The options every sweep shares, checked before any trial runs: ``--runs``, ``--workers`` (local
+processes) and the seeds ``--first-seed`` .. ``--first-seed + --runs - 1``, each of which must
+be a seed the study's ``sim`` verb takes, so that a sweep neither stops part-way on a seed its
+trials refuse nor runs one that ``sim`` would refuse."""
 
 from __future__ import annotations
 
@@ -10,6 +11,11 @@ import click
 # trial specifications, all listed before the first trial runs, stay small (docs/limits.md).
 MAX_RUNS = 1_000
 RUNS = click.IntRange(1, MAX_RUNS)
+# Local processes a sweep starts at once (never more than it has trials to run): each runs one
+# trial, so more than the machine's cores gain nothing, and an unbounded count would fork until
+# the machine runs out of processes.
+MAX_PROCESSES = 1024
+PROCESSES = click.IntRange(1, MAX_PROCESSES)
 
 
 def sweep_seeds(first: int, runs: int, largest: int) -> range:
