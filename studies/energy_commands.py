@@ -14,7 +14,7 @@ from .. import terminal
 from ..errors import InputError
 from ..options import FiniteFloat
 from . import sweeps
-from .energy_replenishment.params import MAX_DURATION_S, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
+from .energy_replenishment.params import MAX_DURATION_S, MAX_ROBOTS, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
 from .extra import need_studies_extra
 from .sweep_options import PROCESSES, RUNS, sweep_seeds
 
@@ -75,8 +75,9 @@ def fail(message: str, status: int = 2):
 @click.command("energy")
 @click.option("--strategy", type=click.Choice(["fixed", "mobile"]), default="fixed", show_default=True,
               help="Workers recharge in the charging strip, or mobile chargers bring them energy.")
-@click.option("--workers", default=6, show_default=True, type=click.IntRange(1, 100), help="n_w.")
-@click.option("--chargers", default=4, show_default=True, type=click.IntRange(1, 100), help="n_m (mobile strategy).")
+@click.option("--workers", default=6, show_default=True, type=click.IntRange(1, MAX_ROBOTS), help="n_w.")
+@click.option("--chargers", default=4, show_default=True, type=click.IntRange(1, MAX_ROBOTS - 1),
+              help="n_m (mobile strategy).")
 @rate_options
 @click.option("--seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
               help="ARGoS random seed (0 would have ARGoS seed from the clock).")

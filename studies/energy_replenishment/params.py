@@ -50,8 +50,8 @@ class Params:
     def __post_init__(self) -> None:
         checks = [(self.strategy in STRATEGIES, "strategy must be one of %s" % ", ".join(STRATEGIES)),
                   (non_finite(self) is None, "every rate and length must be a finite number"),
-                  (1 <= self.workers <= 100, "workers must be 1..100"),
-                  (0 <= self.chargers <= 100, "chargers must be 0..100"),
+                  (self.workers >= 1, "workers must be at least 1"),
+                  (self.chargers >= 0, "chargers must not be negative"),
                   (self.strategy == "fixed" or self.chargers >= 1, "the mobile strategy needs at least one charger"),
                   (self.workers + (self.chargers if self.strategy == "mobile" else 0) <= MAX_ROBOTS,
                    "at most %d robots start in the charging strip (workers, and chargers with the mobile strategy)"
