@@ -18,6 +18,9 @@ from .energy_replenishment.params import MAX_DURATION_S, MAX_ROBOTS, MAX_SEED, M
 from .extra import need_studies_extra
 from .sweep_options import PROCESSES, RUNS, sweep_seeds
 
+# The energy study's seeds (sim --seed, sweep --first-seed): what ARGoS repeats (params.MIN_SEED).
+ARGOS_SEED = click.IntRange(MIN_SEED, MAX_SEED)
+
 # The type of both energy verbs' --work-rate (sim|sweep|plot energy, bounds energy): working must
 # spend energy. The efficiency is the share of energy spent working (0 whatever the robots do at
 # a work rate of 0), and the mobile bound divides by the work rate.
@@ -79,7 +82,7 @@ def fail(message: str, status: int = 2):
 @click.option("--chargers", default=4, show_default=True, type=click.IntRange(1, MAX_ROBOTS - 1),
               help="n_m (mobile strategy).")
 @rate_options
-@click.option("--seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
+@click.option("--seed", default=1, show_default=True, type=ARGOS_SEED,
               help="ARGoS random seed (0 would have ARGoS seed from the clock).")
 @click.option("--trace", type=click.Path(dir_okay=False), default=None, help="Write every robot's step as CSV here.")
 @click.option("--vm-traces", type=click.Path(file_okay=False), default=None,
@@ -109,7 +112,7 @@ def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **v
 @click.option("-o", "--out", required=True, type=click.Path(file_okay=False), help="Results folder (Parquet).")
 @click.option("--figures", default="9,10,11,12", show_default=True, help="The seed's figures whose grids to run.")
 @click.option("--runs", default=50, show_default=True, type=RUNS, help="Trials (seeds) per configuration.")
-@click.option("--first-seed", default=1, show_default=True, type=click.IntRange(MIN_SEED, MAX_SEED),
+@click.option("--first-seed", default=1, show_default=True, type=ARGOS_SEED,
               help="Seeds first..first+runs-1.")
 @click.option("--workers", default=1, show_default=True, type=PROCESSES, help="Local ARGoS processes at once.")
 @click.option("--scheduler", default=None, help="Dask scheduler address: run there instead of locally.")

@@ -92,6 +92,8 @@ def _cluster(scheduler) -> Iterator[Any]:
 
 def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> Iterator[Tuple[str, Tables]]:
     """(key, tables) as trials finish."""
+    if not todo:                        # a sweep resumed when all its trials are done
+        return
     if client is not None:
         from distributed import as_completed as dask_completed
         futures = client.map(run_trial, [s for _, s in todo], key=[k for k, _ in todo])

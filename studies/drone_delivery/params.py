@@ -26,6 +26,15 @@ MAX_INIT_EPOCHS = 10_000                # each an SGD pass in pure Python, for e
 MAX_DISTANCE_M = 2.0e7                  # half the Earth's circumference: no delivery is farther
 
 
+def _refuse_first(checks) -> None:
+    """A ValueError for the first (options, ok, message) not ok: "--option: message", or, where
+    several options make the number together, "--a, --b: message"."""
+    for options, ok, message in checks:
+        if not ok:
+            names = (options,) if isinstance(options, str) else options
+            raise ValueError("%s: %s" % (", ".join("--" + name for name in names), message))
+
+
 @dataclasses.dataclass(frozen=True)
 class Params:
     """Everything a trial depends on; the defaults are Table 2 and the reference configuration."""
@@ -94,9 +103,7 @@ class Params:
                   ("threshold", 0 <= self.threshold <= 1, "must lie in [0, 1]"),
                   ("advert-period-s", self.advert_period_s >= 2, "an auction takes 2 ticks: must be >= 2"),
                   ("accuracy-samples", self.accuracy_samples >= 1, "must be at least 1")]
-        for option, ok, message in checks:
-            if not ok:
-                raise ValueError("--%s: %s" % (option, message))
+        _refuse_first(checks)
         self._check_size()
         self._check_model()
 
@@ -104,16 +111,14 @@ class Params:
         """The limits on what a trial keeps in memory (MAX_DRONES and the two below it)."""
         cells = self.drones * self.accuracy_samples
         orders = max(self.weeks, self.pretrain_weeks) * self.week_s / max(60.0 * self.tau_min, 1.0)
-        for option, ok, message in (
+        _refuse_first((
                 ("drones", self.drones <= MAX_DRONES, "must be at most {:,}".format(MAX_DRONES)),
                 ("accuracy-samples", cells <= MAX_ACCURACY_CELLS,
                  "{:,} drones x {:,} samples pass {:,}, the most a trial keeps".format(
                      self.drones, self.accuracy_samples, MAX_ACCURACY_CELLS)),
                 ("pretrain-weeks" if self.pretrain_weeks > self.weeks else "weeks", orders <= MAX_ORDERS,
                  "about {:,.0f} orders a run (weeks x week-s / tau-min) pass {:,}, the most a trial draws".format(
-                     orders, MAX_ORDERS))):
-            if not ok:
-                raise ValueError("--%s: %s" % (option, message))
+                     orders, MAX_ORDERS))))
 
     def _check_model(self) -> None:
         """The derived constants the trial computes with, at the extremes it reaches, as numbers
@@ -124,7 +129,7 @@ class Params:
             drain = math.inf
         charge = self.charger_eff * self.charger_w / (3600.0 * self.capacity_wh)
         flight = max(self.d_max_m, self.deliver_radius_m, self.home_radius_m) / self.speed_ms
-        for options, ok, message in (
+        _refuse_first((
                 (("frame-kg", "battery-kg", "m-max-kg", "gravity", "rotors", "air-density", "disc-m2", "capacity-wh",
                   "soh-min"), math.isfinite(drain),
                  "give the heaviest flight a drain (equations 14 and 15) that is not a finite number"),
@@ -132,9 +137,7 @@ class Params:
                  "a full charge, 3600 capacity-wh / (charger-w charger-eff), must take more than 1 s and at most "
                  "{:,} s".format(MAX_FULL_CHARGE_S)),
                 (("d-max-m", "deliver-radius-m", "home-radius-m", "speed-ms"), flight <= MAX_FLIGHT_S,
-                 "each distance must be flown within {:,} s".format(MAX_FLIGHT_S))):
-            if not ok:
-                raise ValueError("%s: %s" % (", ".join("--" + option for option in options), message))
+                 "each distance must be flown within {:,} s".format(MAX_FLIGHT_S))))
 
     # -- derived constants ------------------------------------------------------------------------
     @property

@@ -64,8 +64,10 @@ class Params:
                   (self.move_rate >= 0 and self.core_rate >= 0, "rates must not be negative"),
                   (self.work_rate > 0, "the work rate must be positive (working must spend energy)"),
                   (self.speed_cms > 0 and self.duration_s > 0, "speed and duration must be positive"),
-                  (self.duration_s * TICKS_PER_SECOND >= 1, "duration must be at least one control step, %g s (ARGoS runs an experiment "
-                                    "of 0 steps for ever)" % (1 / TICKS_PER_SECOND)),
+                  # ARGoS truncates length x ticks_per_second to whole steps, and runs 0 steps for ever
+                  (self.duration_s * TICKS_PER_SECOND >= 1,
+                   "duration must be at least one control step, %g s (ARGoS runs an experiment of 0 steps for ever)"
+                   % (1 / TICKS_PER_SECOND)),
                   (self.duration_s <= MAX_DURATION_S, "duration must be at most %d s (ARGoS counts an experiment's "
                                                       "length in 32-bit clock ticks)" % MAX_DURATION_S),
                   (self.steering_noise >= 0, "steering noise must not be negative"),
@@ -77,11 +79,6 @@ class Params:
                 raise ValueError(message)
         if self.strategy == "mobile":
             bounds.transfer_periods(self.mobile_rates())    # the bound's search, before ARGoS runs
-
-    @property
-    def steps(self) -> int:
-        """The control steps ARGoS runs: it truncates length x ticks_per_second to an integer."""
-        return int(self.duration_s * TICKS_PER_SECOND)
 
     def per_step(self, rate: float) -> float:
         return rate / TICKS_PER_SECOND

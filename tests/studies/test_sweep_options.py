@@ -93,6 +93,9 @@ def test_local_processes_are_bounded_and_never_more_than_the_trials(monkeypatch,
     result = CliRunner().invoke(main, base + [str(MAX_PROCESSES)])
     assert result.exit_code == 0, result.output
     assert started == [2]
+    resumed = CliRunner().invoke(main, base + ["2"])      # all done: no pool (one of 0 processes raised)
+    assert resumed.exit_code == 0 and "0 trials run, 2 already done" in resumed.output, resumed.output
+    assert started == [2]
     refused = CliRunner().invoke(main, base + [str(MAX_PROCESSES + 1)])
     assert refused.exit_code == 2
     assert refused.output == "swarmvm: error: --workers: %d is not in the range 1<=x<=%d.\n" % (
