@@ -24,13 +24,13 @@ stepped through a dispatch, nothing else) linked and measured by ``swarmvm footp
 current VM as the generated Kilobot Makefile builds it (its features, -ffunction-sections and
 --gc-sections), at kilolib's -O3 and at -Os; the baseline as its Makefile built it (-O3).
 
-The cycles are not what ``swarmvm footprint --cycles`` measures (swarmvm.footprint_cycles, the
+The cycles are not what ``swarmvm footprint --cycles`` measures (swarmvm.footprint.cycles, the
 simavr Kilobot board), and so not its code: that runs a user's kilolib program unchanged with
 one event script, its checks answered from the script, and times ``svm_step`` from outside.
 This benchmark times the conformance harness, built with a timer around each step, over every
 option combination of both VMs, and checks every trace against the Python reference; a kilolib
 program has none of that to compare. The bytes are the same measure, and use the package's:
-``swarmvm.footprint.measure``."""
+``swarmvm.footprint.measure.measure``."""
 
 import argparse
 import re

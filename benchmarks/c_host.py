@@ -26,8 +26,8 @@ from step_costs import SEED, DENSITY
 from baseline import BASELINE, baseline_tree
 from conformance import c_harness  # step_costs put tests/ on the path
 from conformance.cases import OPTIONS, SUPERVISORS, Batch, Run, reference
-from swarmvm.pipeline import compile_inputs
-from swarmvm.script import random_script
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.readers.event_script import random_script
 from figures import add_json_option, write_figures
 
 TRACE_STEPS = 20000

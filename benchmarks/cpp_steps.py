@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from swarmvm import api  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
 from baseline import BASELINE, baseline_tree  # noqa: E402
 import yaml  # noqa: E402
 from figures import add_json_option, write_figures  # noqa: E402

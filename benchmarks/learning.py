@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "runtime_py"))
 sys.path.insert(0, str(ROOT / "tests" / "learning"))
 
-from swarmvm.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
 from swarmvm_learn import LearnedPolicy, q16  # noqa: E402
 from swarmvm_vm import VM, Image  # noqa: E402
 import learnbuild  # noqa: E402

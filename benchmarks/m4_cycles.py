@@ -17,7 +17,7 @@ the current one with the generated CapBot application's features (FEATURES).
 Every trace is also compared with the Python reference, so a figure is never that of a wrong
 run.
 
-Not what ``swarmvm footprint --cycles`` measures (swarmvm.footprint_cycles_m4), and so not its
+Not what ``swarmvm footprint --cycles`` measures (swarmvm.footprint.cycles_m4), and so not its
 code: that runs a user's image unchanged, one event script with the image's own options, and
 counts the instructions of each ``svm_step`` by single-stepping it through QEMU's GDB stub
 (about 0.2 s per step). This benchmark runs the conformance harness, built to time itself, over

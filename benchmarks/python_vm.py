@@ -19,9 +19,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
 from conformance.cases import SUPERVISORS, reference_vm  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.runtime import python_vm  # noqa: E402
-from swarmvm.script import random_script  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.runtime_files import python_vm  # noqa: E402
+from swarmvm.readers.event_script import random_script  # noqa: E402
 
 STEPS = 20000
 

@@ -22,9 +22,9 @@ from large_model import write_large_model
 sys.path.insert(0, str(ROOT / "tests"))
 
 from conformance.cases import SUPERVISORS  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.runtime import python_vm  # noqa: E402
-from swarmvm.script import random_script  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.runtime_files import python_vm  # noqa: E402
+from swarmvm.readers.event_script import random_script  # noqa: E402
 from figures import add_json_option, write_figures  # noqa: E402
 
 STEPS = 3000

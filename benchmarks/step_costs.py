@@ -11,8 +11,8 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from conformance import c_harness  # noqa: E402
 from conformance.cases import OPTIONS, Batch, Run, reference  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.script import random_script  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
+from swarmvm.readers.event_script import random_script  # noqa: E402
 
 STEPS = 200
 SEED = 7

@@ -22,9 +22,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 from conformance import c_harness, qemu_harness  # noqa: E402
 from conformance.cases import Batch, Run  # noqa: E402
 from conformance.cpp_harness import FLAGS as CPP_FLAGS, runs_text  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.runtime import RUNTIME_CPP  # noqa: E402
-from swarmvm.script import parse_script  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.runtime_files import RUNTIME_CPP  # noqa: E402
+from swarmvm.readers.event_script import parse_script  # noqa: E402
 
 PASS_NAMES = {0: "compiled in", 1: "loaded", 2: "EEPROM"}
 

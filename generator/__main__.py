@@ -1,5 +1,5 @@
 """``python -m swarmvm``: the same command line as the ``swarmvm`` script."""
 
-from .cli import main
+from .cli.commands import main
 
 main(prog_name="swarmvm")

@@ -1,11 +1,11 @@
 """swarmvm's Python API: every verb of the command line as a typed function (docs/api.md).
 
-The command line (``swarmvm.cli``) only parses options, calls these and prints; scripts,
+The command line (``swarmvm.cli.commands``) only parses options, calls these and prints; scripts,
 notebooks and other tools call them directly. Bad input raises :class:`InputError` (one line
 naming file, key and place); nothing here writes a file unless its name says so.
 
 Errors (docs/api.md): every public function checks its arguments first (one rule per parameter,
-:func:`swarmvm.arguments.checked`). An argument of the wrong type (a str where a list of paths
+:func:`swarmvm.boundary.arguments.checked`). An argument of the wrong type (a str where a list of paths
 is expected, a ``Path`` where a str is) raises TypeError: the calling program is wrong. A value
 the function cannot use (no file, a count out of range, nan, an unknown target, format or mode,
 a file name holding NUL) raises InputError naming the parameter, as bad input on the command
@@ -15,31 +15,45 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
-from . import footprint as fp
-from . import footprint_report as fp_report
-from . import pipeline, properties, script
-from .arguments import (checked, file_name, file_names, flag, instance, integer, maybe_file_names, number, one_of,
-                        optional, text, texts)
-from .equiv import compare, format_difference
-from .footprint_budget import Budgets, read_budgets
-from .footprint_delta import read_baseline
-from .footprint_cycles import measure_cycles
-from .footprint_stack import STEP_ROOT, measure_stack, parse_indirect
-from .errors import InputError, read_input
-from .export import FORMATS, export_files
-from .inspect_page import Inspection, write_page
-from .model import Model
-from .naming import file_stem
-from .pipeline import Compiled, compile_inputs, compile_spec
-from .product import DEFAULT_MAX_STATES, TRANSITIONS_PER_STATE
-from .properties import format_report
-from .output import write_outputs
-from .runtime import python_vm
-from .script import read_script_rows
-from .synth import models_by_name, synthesise
-from .synth_script import read_synth_script
+from .boundary.arguments import (
+    checked,
+    file_name,
+    file_names,
+    flag,
+    instance,
+    integer,
+    maybe_file_names,
+    number,
+    one_of,
+    optional,
+    text,
+    texts,
+)
+from .boundary.errors import InputError, read_input
+from .boundary.output import write_outputs
+from .compiler import pipeline
+from .compiler.model import Model
+from .compiler.naming import file_stem
+from .compiler.pipeline import Compiled, compile_inputs, compile_spec
+from .compiler.runtime_files import python_vm
+from .compiler.user_files import Drift, drift
+from .footprint import measure as fp
+from .footprint import report as fp_report
+from .footprint.budget import Budgets, read_budgets
+from .footprint.cycles import measure_cycles
+from .footprint.delta import read_baseline
+from .footprint.stack import STEP_ROOT, measure_stack, parse_indirect
+from .inspector.page import Inspection, write_page
+from .models import properties
+from .models.equivalence import compare, format_difference
+from .models.export import FORMATS, export_files
+from .models.product import DEFAULT_MAX_STATES, TRANSITIONS_PER_STATE
+from .models.properties import format_report
+from .models.synthesis import models_by_name, synthesise
+from .readers import event_script as script
+from .readers.event_script import read_script_rows
+from .readers.synth_script import read_synth_script
 from .targets import TARGETS, generate
-from .user_files import Drift, drift
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
            "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "script_lines", "make_script",
@@ -51,11 +65,11 @@ if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folde
 
 _vm = python_vm()
 
-# The rules of parameters several functions share (swarmvm.arguments).
+# The rules of parameters several functions share (swarmvm.boundary.arguments).
 _NAME = optional(text)
 _TARGET = one_of(TARGETS, "target")
 _MAX_STATES = integer(1)
-_SEED = integer(0, 0xFFFFFFFF)                     # the VM's 32-bit generator (swarmvm.options.SEED)
+_SEED = integer(0, 0xFFFFFFFF)                     # the VM's 32-bit generator (swarmvm.cli.options.SEED)
 _SYNTH_FORMATS = ("yaml", "gen")
 
 load = checked(paths=file_names)(pipeline.load)
@@ -244,7 +258,7 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles:
 
 
 @checked(elfs=file_names, budget=optional(file_name), baseline=optional(file_name),
-         fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.Limits"),
+         fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.measure.Limits"),
          indirect=texts, cycles=optional(file_name))
 def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: str | None = None,
                      fail_on_growth: float | None = None, limits: fp.Limits = fp.Limits(),
@@ -255,7 +269,7 @@ def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: s
     resolved by the ``indirect`` declarations, each image run with the event script ``cycles``
     for its cycles per step (measure_footprint); the files are read first, so a bad one raises
     InputError before any image is measured (docs/footprint.md).
-    ``swarmvm.footprint_report`` writes it as Markdown, JUnit XML or JSON; ``failures()`` is empty
+    ``swarmvm.footprint.report`` writes it as Markdown, JUnit XML or JSON; ``failures()`` is empty
     when it passes."""
     if fail_on_growth is not None and baseline is None:
         raise InputError("", "fail_on_growth", "growth is measured against a baseline: give one")

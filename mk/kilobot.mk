@@ -9,7 +9,7 @@
 #                   kilobot` into $(KILOBOT_OUT)/gen/<name>/, then that folder's Makefile with
 #                   KILOLIB= and the project's warnings as errors. STREAM=1 builds the streaming
 #                   variant into $(BUILD)/kilobot-stream/ (`make footprint STREAM=1` checks it).
-#   make kilobot-board   the simavr Kilobot board (generator/kilobot_board/: the IR channel)
+#   make kilobot-board   the simavr Kilobot board (generator/footprint/kilobot_board/: the IR channel)
 #   make emulate    runs the swap demo on the board (mk/emulate.mk)
 #   make bench      also runs benchmarks/avr_cycles.py (cycles per VM step in simavr and the VM
 #                   core's flash and RAM, current VM against the baseline, in one run)

@@ -2,7 +2,7 @@
 
 Magic, version, header fields and their offsets, flags, section order, limits, the codes a
 reader gives a refused image, the checksum, the writer's assembly and the reader. The generator
-(generator/image.py) writes images with :func:`assemble`; the Python VM (swarmvm_vm.py) reads
+(generator/compiler/image.py) writes images with :func:`assemble`; the Python VM (swarmvm_vm.py) reads
 them with :meth:`Image.parse`. The C and C++ runtimes keep their own constants (a
 microcontroller cannot import this file); tests/image/test_format_constants.py checks them
 against these, and tests/image/test_reader_parity.py checks that all three readers give the

@@ -56,7 +56,7 @@ def callback_stem(name: str) -> str:
     """The part of a callback's name that names its event (``on_<stem>``, ``check_<stem>``), in
     every target: the bare name, except that the receive side of a public event, ``_x``, is
     ``received_x`` (C++ reserves identifiers with ``__``). The generator names every generated
-    identifier by this rule (swarmvm/naming.py) and refuses models where two events share one."""
+    identifier by this rule (generator/compiler/naming.py) and refuses models where two events share one."""
     return "received" + name if name.startswith("_") else name
 
 
@@ -995,7 +995,7 @@ def _compat_image(filename: str) -> Tuple[Image, Optional[list[int]], Optional[l
     image: Optional[Image] = None
     if filename.endswith(".yaml") and os.path.exists(filename):
         try:
-            from swarmvm.pipeline import compile_inputs
+            from swarmvm.compiler.pipeline import compile_inputs
         except ImportError:
             pass
         else:

@@ -61,7 +61,7 @@ def environment(work: Path, tree: Path) -> dict[str, str]:
     written within the second its original was compiled would otherwise run as the original).
     SystemExit unless the package and both runtime modules then import from the copy."""
     env = dict(os.environ, PYTHONPATH=str(work.resolve() / "site"), PYTHONDONTWRITEBYTECODE="1")
-    probe = ("from swarmvm import runtime\n"
+    probe = ("from swarmvm.compiler import runtime_files as runtime\n"
              "print(runtime.__file__, runtime.image_format().__file__, runtime.python_vm().__file__, sep='\\n')")
     found = subprocess.run([sys.executable, "-c", probe], cwd=tree, env=env, capture_output=True, text=True).stdout
     if not found or any(not path.startswith(str(work.resolve())) for path in found.split()):

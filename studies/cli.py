@@ -1,7 +1,7 @@
 """The studies' subcommands of ``swarmvm sim|sweep|plot|bounds <study>``: the drone-delivery
 study's (``uav``) here, the energy-replenishment study's (``energy``) in energy_commands.
 
-The verbs themselves are groups of the main command line (swarmvm.cli), which imports
+The verbs themselves are groups of the main command line (swarmvm.cli.commands), which imports
 :data:`SUBCOMMANDS` only when one of them runs or shows its help: the compiler's verbs never
 import the studies."""
 
@@ -12,8 +12,8 @@ import json
 
 import click
 
-from .. import terminal
-from ..options import SEED, SEED_MAX, FiniteFloat
+from ..boundary import terminal
+from ..cli.options import SEED, SEED_MAX, FiniteFloat
 from . import energy_commands, sweeps
 from .drone_delivery.params import RULES, Params
 from .extra import need_studies_extra
@@ -162,7 +162,7 @@ def plot_uav(results, out, tau):
         terminal.note("uav: %s: give --tau one of them" % text)
 
 
-# Each verb's subcommands, one per study (the verb's group is swarmvm.cli's).
+# Each verb's subcommands, one per study (the verb's group is swarmvm.cli.commands's).
 SUBCOMMANDS: dict[str, tuple[click.Command, ...]] = {
     "sim": (sim_uav, energy_commands.sim_energy),
     "sweep": (sweep_uav, energy_commands.sweep_energy),

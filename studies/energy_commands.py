@@ -10,9 +10,9 @@ from pathlib import Path
 
 import click
 
-from .. import terminal
-from ..errors import InputError
-from ..options import FiniteFloat
+from ..boundary import terminal
+from ..boundary.errors import InputError
+from ..cli.options import FiniteFloat
 from . import sweeps
 from .energy_replenishment.params import MAX_DURATION_S, MAX_ROBOTS, MAX_SEED, MIN_SEED, STRIP_HALF_WIDTH_M
 from .extra import need_studies_extra
@@ -121,7 +121,8 @@ def sim_energy(strategy, workers, chargers, seed, trace, vm_traces, as_json, **v
 def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress, **values):
     """Energy replenishment: the grids of Figures 9-12 in real ARGoS; finished trials are not rerun."""
     need_studies_extra()
-    from .energy_replenishment import plugin, sweep as grid_sweep, trial
+    from .energy_replenishment import plugin, trial
+    from .energy_replenishment import sweep as grid_sweep
     wanted = [f.strip() for f in figures.split(",") if f.strip()]
     bad = [f for f in wanted if f not in grid_sweep.FIGURES]
     if bad or not wanted:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import importlib.util
 
-from .. import terminal
+from ..boundary import terminal
 
 # What `pip install "swarmvm[studies]"` adds (pyproject.toml), by import name.
 STUDIES_EXTRA = ("numpy", "pandas", "pyarrow", "dask", "tqdm", "matplotlib")

@@ -103,7 +103,7 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> It
         for name, spec in todo:
             yield name, run_trial(spec)
     else:
-        # Leaving the pool, normally or by an exception (SIGTERM included, swarmvm.termination),
+        # Leaving the pool, normally or by an exception (SIGTERM included, swarmvm.boundary.termination),
         # terminates its processes: a trial still running then stops, and its ARGoS with it,
         # instead of running on orphaned.
         with multiprocessing.Pool(min(workers, len(todo))) as pool:

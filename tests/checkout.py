@@ -1,5 +1,5 @@
 """Paths in the source checkout that tests build from: firmware glue and harnesses, which the
-installed package does not ship (it ships templates and runtimes, found through swarmvm.runtime)."""
+installed package does not ship (it ships templates and runtimes, found through swarmvm.compiler.runtime_files)."""
 
 from pathlib import Path
 

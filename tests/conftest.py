@@ -12,7 +12,7 @@ TESTS = Path(__file__).resolve().parent
 sys.path.insert(0, str(TESTS))
 os.environ["PATH"] = os.path.dirname(sys.executable) + os.pathsep + os.environ.get("PATH", "")
 
-from swarmvm.runtime import python_vm  # noqa: E402
+from swarmvm.compiler.runtime_files import python_vm  # noqa: E402
 
 # Hypothesis (the property tests of tests/properties/ and docs/conformance.md, the generative
 # tests of the trust boundary in tests/security/, tests/inputs/ and tests/cli/): in CI the same

@@ -27,11 +27,11 @@ sys.path.insert(0, str(ROOT / "firmware" / "kilobot"))
 import board  # noqa: E402
 from conformance import c_harness  # noqa: E402
 from kilolib_build import kilolib_dir  # noqa: E402
-from swarmvm.image import chunks  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
-from swarmvm.output import write_outputs  # noqa: E402
-from swarmvm.naming import callback_stem  # noqa: E402
-from swarmvm.runtime import python_vm, reference_vm  # noqa: E402
+from swarmvm.compiler.image import chunks  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
+from swarmvm.boundary.output import write_outputs  # noqa: E402
+from swarmvm.compiler.naming import callback_stem  # noqa: E402
+from swarmvm.compiler.runtime_files import python_vm, reference_vm  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"

@@ -5,7 +5,7 @@ image reader's and the VM's kill tests (tests/mutation_kills/) build their image
 import struct
 from typing import Optional, Sequence
 
-from swarmvm.runtime import image_format
+from swarmvm.compiler.runtime_files import image_format
 
 F = image_format()
 

@@ -1,6 +1,6 @@
 """The simavr Kilobot board, by the name the tests, the swap demo and ``make kilobot-board`` use
 (``import board`` from firmware/kilobot/). Its code and C source are the package's,
-``swarmvm.kilobot_board`` (generator/kilobot_board/), so that an installed swarmvm has them for
+``swarmvm.footprint.kilobot_board`` (generator/footprint/kilobot_board/), so that an installed swarmvm has them for
 ``swarmvm footprint --cycles``; this module only points there.
 
     python3 firmware/kilobot/board.py      prints the board program's path (building it if need be)
@@ -8,7 +8,7 @@
 
 import sys
 
-from swarmvm.kilobot_board import Run, board_path, run
+from swarmvm.footprint.kilobot_board import Run, board_path, run
 
 __all__ = ["Run", "board_path", "run"]
 

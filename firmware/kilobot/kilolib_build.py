@@ -27,7 +27,7 @@ from typing import Callable
 
 # No kilolib could be found or built (the message says why and how to get one): the package's
 # error for a missing Kilobot tool, which the board raises too, and its cache folder.
-from swarmvm.kilobot_board import KilobotToolMissing as KilolibMissing, cache_root
+from swarmvm.footprint.kilobot_board import KilobotToolMissing as KilolibMissing, cache_root
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 DEFAULT_SOURCE = ROOT.parent / "shared" / "vendor" / "kilolib-b95fdaf.tar.gz"

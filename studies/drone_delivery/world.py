@@ -25,8 +25,17 @@ from typing import List, Optional
 import numpy as np
 
 from .auction import lowest, winner
-from .energy import (NEVER, aborts_before_move, charged, lost_before_move, measure, outbound_end,
-                     outbound_ticks, return_ticks, first_true)
+from .energy import (
+    NEVER,
+    aborts_before_move,
+    charged,
+    first_true,
+    lost_before_move,
+    measure,
+    outbound_end,
+    outbound_ticks,
+    return_ticks,
+)
 from .fleet import LEVELS, Fleet
 from .orders import Orders
 from .params import Params

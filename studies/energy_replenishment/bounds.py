@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-
 # The most transfer periods best_transfer_period tries (one every 0.1 s up to what a charger can
 # give): a larger charger capacity is refused rather than searched for minutes or for ever.
 MAX_TRANSFER_PERIODS = 100_000

@@ -154,7 +154,7 @@ def figure12(plt, trials, base: Params, path: Path) -> Optional[Path]:
         return None
     fixed = rows[rows["strategy"] == "fixed"]
     losses = sorted(rows.loc[rows["strategy"] == "mobile", "transfer_loss"].unique())
-    import pandas as pd   # the fixed strategy has no transfers: its trials drawn at every loss
+    import pandas as pd  # the fixed strategy has no transfers: its trials drawn at every loss
     rows = pd.concat([rows[rows["strategy"] == "mobile"]] + [fixed.assign(transfer_loss=x) for x in losses])
     return _lines(plt, rows, "transfer_loss", "transfer loss 1 - xi (fraction lost)", "Figure 12: transfer loss", path,
                   fixed_note=" (no transfers: drawn at every loss)")

@@ -20,7 +20,8 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from swarmvm import api, terminal
+from swarmvm import api
+from swarmvm.boundary import terminal
 
 PACKAGE = Path(__file__).resolve().parent
 SOURCES = PACKAGE / "argos"

@@ -11,8 +11,9 @@ import tempfile
 import time
 from pathlib import Path
 
+from swarmvm.boundary.output import write_outputs
+
 from . import plugin
-from swarmvm.output import write_outputs
 from .experiment import experiment, robot_kinds
 from .params import Params
 

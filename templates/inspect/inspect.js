@@ -1,4 +1,4 @@
-// swarmvm inspect: displays what the page's JSON says (swarmvm/inspect_page.py computed it all).
+// swarmvm inspect: displays what the page's JSON says (generator/inspector/page.py computed it all).
 // User text reaches the page only through textContent, never as markup.
 "use strict";
 (function () {

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from checkout import ROOT
-from swarmvm.naming import fnv1a
+from swarmvm.compiler.naming import fnv1a
 
 ARGOS_SH = ROOT / "scripts" / "argos.sh"
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"

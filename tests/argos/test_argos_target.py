@@ -9,8 +9,8 @@ import subprocess
 import pytest
 from argos_project import CORPUS, generate
 
-from swarmvm.naming import callback_stem, message_code, message_name
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.naming import callback_stem, message_code, message_name
+from swarmvm.compiler.pipeline import compile_inputs
 
 SUPERVISORS = ("energy_worker", "network_worker")
 

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus"
 

@@ -21,7 +21,7 @@ import yaml
 
 from checkout import ROOT
 from swarmvm import api
-from swarmvm.runtime import RUNTIME_CPP
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
 pytestmark = pytest.mark.emulator   # real ARGoS's libraries
 

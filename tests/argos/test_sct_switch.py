@@ -27,7 +27,7 @@ from argos_project import ARGOS_SH
 
 from checkout import ROOT
 from swarmvm import api
-from swarmvm.runtime import RUNTIME_CPP
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]   # builds and runs projects in real ARGoS
 

@@ -13,7 +13,7 @@ from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference, supervisor_yaml
 from corrupted import corrupt_compiled_in_image
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

@@ -1,7 +1,7 @@
 """What firmware/capbot/app_qemu.c (the bare-metal CapBot application's environment in QEMU)
 makes happen, as an event script the reference VM can replay."""
 
-from swarmvm.runtime import python_vm
+from swarmvm.compiler.runtime_files import python_vm
 
 APP_STEPS = 20          # firmware/capbot/app_qemu.c: SVM_APP_STEPS
 ENV_SEED = 2024         # firmware/capbot/app_qemu.c: ENV_SEED

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from swarmvm import api
-from swarmvm.footprint import FootprintError
+from swarmvm.footprint.measure import FootprintError
 
 ROOT = Path(__file__).parents[2]
 EXAMPLE = str(ROOT / "examples" / "energy_worker" / "supervisor.yaml")

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 EXAMPLES = Path(__file__).parents[2] / "examples"
 WORKER = str(EXAMPLES / "energy_worker" / "supervisor.yaml")

@@ -8,9 +8,9 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.pipeline import compile_inputs
-from swarmvm.script import parse_script
+from swarmvm.cli.commands import main
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.readers.event_script import parse_script
 
 CORPUS = Path(__file__).parent.parent / "corpus"
 

@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from cli.test_usage_errors import VERBS, leaf_commands
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 OPTIONS = [(path, option) for path, command in leaf_commands() for option in command.params
            if isinstance(option, click.Option)]

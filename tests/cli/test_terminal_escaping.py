@@ -12,7 +12,7 @@ from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 ROOT = Path(__file__).parents[2]
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"

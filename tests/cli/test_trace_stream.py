@@ -10,9 +10,9 @@ import pytest
 
 from checkout import EXAMPLE
 from swarmvm import api
-from swarmvm.errors import MAX_BYTES
-from swarmvm.runtime import python_vm
-from swarmvm.script import MAX_LINE_BYTES, MAX_STEPS, parse_script
+from swarmvm.boundary.errors import MAX_BYTES
+from swarmvm.compiler.runtime_files import python_vm
+from swarmvm.readers.event_script import MAX_LINE_BYTES, MAX_STEPS, parse_script
 
 STEPS = MAX_STEPS
 PEAK_LIMIT_KB = 100 * 1024

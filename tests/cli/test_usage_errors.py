@@ -7,7 +7,7 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 EXAMPLE = str(Path(__file__).parents[2] / "examples" / "energy_worker" / "supervisor.yaml")
 

@@ -12,7 +12,7 @@ import re
 import subprocess
 from pathlib import Path
 
-from swarmvm.runtime import RUNTIME_C
+from swarmvm.compiler.runtime_files import RUNTIME_C
 from checkout import FIRMWARE
 
 HARNESS = FIRMWARE / "harness"
@@ -42,7 +42,7 @@ def _header_fields(image):
 
 def counts(batch):
     """(events, supervisors, states) of the batch's image."""
-    parsed = __import__("swarmvm.runtime", fromlist=["python_vm"]).python_vm().Image.parse(batch.image)
+    parsed = __import__("swarmvm.compiler.runtime_files", fromlist=["python_vm"]).python_vm().Image.parse(batch.image)
     return parsed.num_events, parsed.num_supervisors, len(parsed.state_defined)
 
 

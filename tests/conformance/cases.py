@@ -12,9 +12,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import python_vm, reference_vm
-from swarmvm.script import random_script
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import python_vm, reference_vm
+from swarmvm.readers.event_script import random_script
 
 CORPUS = Path(__file__).resolve().parent.parent / "corpus"
 SUPERVISORS = sorted(str(p) for p in CORPUS.glob("*/*.yaml"))

@@ -4,7 +4,7 @@ by its test (test_cpp.py) and by `make emulate` (firmware/emulate_example.py).""
 import subprocess
 from pathlib import Path
 
-from swarmvm.runtime import RUNTIME_CPP
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
 FLAGS = ["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 

@@ -20,7 +20,7 @@ from conformance._c_compare import mismatches
 from conformance.inspected import inspected_states, states_of
 from conformance.cases import SUPERVISORS, Batch, Run, batch, supervisor_yaml
 from conformance.test_widest_model import MODEL as WIDEST
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 

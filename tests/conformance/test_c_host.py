@@ -16,7 +16,7 @@ import pytest
 from conformance import c_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
-from swarmvm.runtime import RUNTIME_C, python_vm
+from swarmvm.compiler.runtime_files import RUNTIME_C, python_vm
 
 
 # Exact limits: one mask width, masks in a native integer; default limits (64 events): images

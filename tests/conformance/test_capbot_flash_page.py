@@ -19,7 +19,7 @@ from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
 from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS, batch
-from swarmvm.runtime import image_format, python_vm
+from swarmvm.compiler.runtime_files import image_format, python_vm
 from checkout import ROOT
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU

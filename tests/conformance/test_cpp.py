@@ -10,7 +10,7 @@ import pytest
 
 from conformance.cases import batches, reference
 from conformance.cpp_harness import FLAGS, c_array, runs_text
-from swarmvm.runtime import RUNTIME_CPP, python_vm
+from swarmvm.compiler.runtime_files import RUNTIME_CPP, python_vm
 
 COMPILERS = ("g++", "clang++")
 BATCHES = batches()

@@ -4,7 +4,7 @@ the Python reference (the C printer used to cut them at 47 characters)."""
 from conformance import c_harness
 from conformance._c_compare import mismatches
 from conformance.cases import Batch, Run, one_supervisor_yaml
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 LONG = "x" * 255
 MODEL = one_supervisor_yaml([LONG, "u"], [1, 0], [LONG, "u"])

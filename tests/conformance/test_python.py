@@ -21,7 +21,7 @@ from types import SimpleNamespace
 import pytest
 
 from conformance.cases import SUPERVISORS, batch
-from swarmvm.runtime import reference_vm
+from swarmvm.compiler.runtime_files import reference_vm
 from conformance.file_oracle import FileOracle
 
 

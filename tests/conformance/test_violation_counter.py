@@ -6,8 +6,8 @@ import subprocess
 from conformance import c_harness
 from conformance.cases import Batch, Run, one_supervisor_yaml, reference
 from conformance.cpp_harness import FLAGS, c_array, runs_text
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
 # EV_u is in the supervisor's alphabet but possible in no state: every step it is seen is a violation.
 NEVER_POSSIBLE = one_supervisor_yaml(["c", "u"], [1, 0], ["c"])

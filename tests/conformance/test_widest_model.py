@@ -4,7 +4,7 @@
 from conformance import c_harness
 from conformance._c_compare import mismatches
 from conformance.cases import Batch, Run, one_supervisor_yaml
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 EVENTS = ["c"] + ["u%d" % i for i in range(254)]
 MODEL = one_supervisor_yaml(EVENTS, [1] + [0] * 254, EVENTS)

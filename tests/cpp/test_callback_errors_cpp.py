@@ -9,7 +9,7 @@ from pathlib import Path
 from checkout import EXAMPLE
 from conformance.cases import HOOKED
 from conformance.cpp_harness import build_program
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 PROGRAM = Path(__file__).resolve().parent / "callback_errors.cpp"
 

@@ -10,7 +10,7 @@ import pytest
 
 from conformance.cases import SUPERVISORS
 from conformance.cpp_harness import build_program
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 PROGRAM = Path(__file__).resolve().parent / "step_paths.cpp"
 OPTIONS = ["%s %s %s" % (i, c, p) for i in ("level", "edge") for c in ("after-inputs", "if-quiet")

@@ -10,8 +10,8 @@ from pathlib import Path
 
 from conformance.cases import SWAP_FIRST, SWAP_SECOND
 from conformance.cpp_harness import build_program
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import python_vm
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import python_vm
 
 PROGRAM = Path(__file__).resolve().parent / "swap_mid_step.cpp"
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g"]

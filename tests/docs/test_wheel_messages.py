@@ -13,7 +13,7 @@ from pathlib import Path
 import click
 import pytest
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 # Top-level folders of the repository that the wheel does not install.
 REPOSITORY_ONLY = re.compile(r"\b(scripts|docs|tests|benchmarks|firmware|examples|mk)/")

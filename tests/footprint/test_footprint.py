@@ -14,8 +14,8 @@ import pytest
 from elftools.elf.elffile import ELFFile
 
 from conformance.cases import batch, SUPERVISORS
-from swarmvm import footprint
-from swarmvm.runtime import RUNTIME_C
+from swarmvm.footprint import measure as footprint
+from swarmvm.compiler.runtime_files import RUNTIME_C
 from footprint_images import NAMES, elf, swarmvm_footprint
 
 M4 = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16", "-Os", "-ffunction-sections",

@@ -6,7 +6,7 @@ the Markdown and JUnit reports. Before this change there was no --chart (usage e
 import xml.etree.ElementTree as ET
 
 from footprint_images import elf, swarmvm_footprint
-from swarmvm import footprint
+from swarmvm.footprint import measure as footprint
 
 SVG = "{http://www.w3.org/2000/svg}"
 

@@ -301,11 +301,11 @@ def test_cycles_build_the_board_from_the_package_into_an_empty_cache(build, tmp_
 
 def test_cycles_without_a_c_compiler_say_what_is_missing(build, tmp_path, monkeypatch):
     """No board in the cache and no C compiler to build it: the error says what to install."""
-    import swarmvm.kilobot_board
+    import swarmvm.footprint.kilobot_board
     from swarmvm import api
-    from swarmvm.footprint import FootprintError
+    from swarmvm.footprint.measure import FootprintError
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
-    monkeypatch.setattr(swarmvm.kilobot_board.shutil, "which", lambda name: None)
+    monkeypatch.setattr(swarmvm.footprint.kilobot_board.shutil, "which", lambda name: None)
     events = tmp_path / "events.txt"
     events.write_text("-\n")
     elf = build / "kilobot" / "gen" / "energy_worker" / "energy_worker.elf"

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from footprint_images import BALLAST_FLASH, BALLAST_RAM, elf, swarmvm_footprint
-from swarmvm import footprint
+from swarmvm.footprint import measure as footprint
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "footprint.md"
 

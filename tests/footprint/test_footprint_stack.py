@@ -19,7 +19,7 @@ from checkout import FIRMWARE
 from footprint_images import DEEPER_ARRAY, KILOBOT_INDIRECT, swarmvm_footprint
 
 from swarmvm import api
-from swarmvm.footprint import Limits
+from swarmvm.footprint.measure import Limits
 
 sys.path.insert(0, str(FIRMWARE / "kilobot"))
 sys.path.insert(0, str(FIRMWARE.parent / "tests" / "kilobot"))

@@ -7,7 +7,7 @@ import socket
 
 import pytest
 
-from swarmvm.qemu_gdb import QemuGdb, QemuGdbError
+from swarmvm.footprint.qemu_gdb import QemuGdb, QemuGdbError
 
 
 class _Output:

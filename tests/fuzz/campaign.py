@@ -23,7 +23,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
 from fuzz import readers  # noqa: E402
-from swarmvm.runtime import RUNTIME_C  # noqa: E402
+from swarmvm.compiler.runtime_files import RUNTIME_C  # noqa: E402
 
 C_RUNTIME = "c_runtime"
 C_RUNTIME_EXACT = "c_runtime_exact"

@@ -4,7 +4,7 @@ The input bytes are decoded (atheris' FuzzedDataProvider) into a random local-mo
 supervisor set whose event and model names come from awkward pools too (C, C++ and Python
 keywords, ``stream``, ``x`` beside ``_x``/``received_x``, the runtime's ``svm``/``svm_sct``,
 ``NULL``, 255-character and non-ASCII names); it is written as a Nadzoru 2 ``supervisor.yaml``
-(swarmvm.export.to_yaml) and generated for every target. The property (issue 12): for each
+(swarmvm.models.export.to_yaml) and generated for every target. The property (issue 12): for each
 target either a clear project error (an InputError of one line, and nothing written), or code
 that compiles: py_compile for python and pipuck; the c and kilobot targets' sources, as their
 generated Makefiles list them, with its limits, under the strict warnings of
@@ -32,15 +32,15 @@ from conformance.qemu_harness import CAPBOT
 from fuzz.readers import refused
 from kilobot.needs import kilolib_or_skip
 from swarmvm import api
-from swarmvm.errors import InputError
-from swarmvm.export import to_yaml
-from swarmvm.model import CanonicalSupervisor, Model
+from swarmvm.boundary.errors import InputError
+from swarmvm.models.export import to_yaml
+from swarmvm.compiler.model import CanonicalSupervisor, Model
 from swarmvm.targets import TARGETS
 
 MAX_EVENTS, MAX_SUPERVISORS, MAX_STATES = 8, 3, 4
 PLAIN = ["a", "b", "go", "stop", "msg", "_msg", "tick", "Z9"]
 # The C11 and C++20 keywords and a few predefined names, written out here rather than taken from
-# swarmvm.naming: the fuzzer must not share a gap in the compiler's own list.
+# swarmvm.compiler.naming: the fuzzer must not share a gap in the compiler's own list.
 C_CPP_WORDS = """alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t
 char32_t class compl concept const consteval constexpr constinit const_cast continue co_await co_return co_yield
 decltype default delete do double dynamic_cast else enum explicit export extern false final float for friend goto

@@ -1,7 +1,7 @@
 """The fuzz targets over swarmvm's readers: one function per reader taking the bytes of a file.
 
 The property every reader must have (issue 12, docs/fuzzing.md): any input either loads or is
-refused with the project's own one-line error, :class:`swarmvm.errors.InputError` (what the
+refused with the project's own one-line error, :class:`swarmvm.boundary.errors.InputError` (what the
 command line prints as ``swarmvm: error: ...`` with exit status 2); the Python runtime's own
 reader refuses with its :class:`ImageError`. Any other exception escapes the target and is a
 finding; libFuzzer's timeout and memory limit catch a hang or unbounded memory. Images and
@@ -20,9 +20,9 @@ from pathlib import Path
 from typing import Callable, Dict
 
 from swarmvm import api
-from swarmvm.errors import InputError
-from swarmvm.lua_literal import LuaSyntaxError, parse_lua_table
-from swarmvm.runtime import RUNTIME_C, image_format, python_vm
+from swarmvm.boundary.errors import InputError
+from swarmvm.readers.lua_literal import LuaSyntaxError, parse_lua_table
+from swarmvm.compiler.runtime_files import RUNTIME_C, image_format, python_vm
 
 F = image_format()
 VM = python_vm()
@@ -155,7 +155,7 @@ def script(data: bytes) -> None:
 
 
 def lua_literal(data: bytes) -> None:
-    """The Lua literal reader under the ``.nza`` reader (swarmvm.lua_literal), alone and so
+    """The Lua literal reader under the ``.nza`` reader (swarmvm.readers.lua_literal), alone and so
     reached by every input rather than only those that decode and frame as an automaton: a
     table, or its LuaSyntaxError (the ``.nza`` reader turns that into one InputError line)."""
     try:

@@ -17,7 +17,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 # a few inputs a second).
 with atheris.instrument_imports(include=["swarmvm", "swarmvm_format", "swarmvm_vm", "defusedxml", "fuzz"]):
     from fuzz import gen_target, readers
-    from swarmvm.runtime import python_vm
+    from swarmvm.compiler.runtime_files import python_vm
     python_vm()
 
 TARGETS = dict(readers.READERS, codegen=gen_target.one_input)

@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from fuzz import campaign, readers
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 CASES = sorted(p for p in readers.REGRESSIONS.glob("*/*") if p.is_file())
 SUFFIXES = {"yaml": ".yaml", "xml": ".xml", "xmd": ".xmd", "nza": ".nza", "lua": ".nza", "gen": ".gen", "svm": ".svm",

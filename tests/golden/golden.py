@@ -30,7 +30,7 @@ from click.testing import CliRunner  # noqa: E402
 
 from checkout import EXAMPLE, ROOT  # noqa: E402
 from swarmvm.api import learned_pairs  # noqa: E402
-from swarmvm.pipeline import compile_inputs  # noqa: E402
+from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
 from swarmvm.targets import TARGETS, generate  # noqa: E402
 
 NAME = "energy_worker"
@@ -112,7 +112,7 @@ def rendered(inputs: Path, target: str, name: str | None = None, learned: tuple[
 def refusals(target: str) -> bytes:
     """What ``swarmvm gen`` prints on stderr for each REFUSALS case on ``target``: why the case
     is there, the command, then its one-line error, or ``generated`` when the target takes it."""
-    from swarmvm.cli import main    # here: the rendered goldens need no command line (nor the studies it loads)
+    from swarmvm.cli.commands import main    # here: the rendered goldens need no command line (nor the studies it loads)
 
     text = []
     with tempfile.TemporaryDirectory() as out, contextlib.chdir(ROOT):

@@ -14,8 +14,8 @@ import pytest
 
 from checkout import EXAMPLE, ROOT
 from golden import HERE, MODELS, MODELS_DIR, REFUSALS, REFUSALS_DIR, digest, expected
-from swarmvm.naming import event_names
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.naming import event_names
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import TARGETS, copy_banner, generate
 
 EXPECTED = expected()

@@ -12,9 +12,9 @@ replaces 0 are also read from what the VM does with them (swarmvm.c uses the hea
 import subprocess
 
 from checkout import EXAMPLE
-from swarmvm import naming
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_C, RUNTIME_CPP, image_format, python_vm
+from swarmvm.compiler import naming
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import RUNTIME_C, RUNTIME_CPP, image_format, python_vm
 
 F = image_format()
 VM = python_vm()

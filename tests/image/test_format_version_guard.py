@@ -12,8 +12,8 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.runtime import image_format
+from swarmvm.cli.commands import main
+from swarmvm.compiler.runtime_files import image_format
 
 F = image_format()
 SUPERVISOR = Path(__file__).resolve().parents[1] / "corpus" / "openswarm" / "energy_worker.yaml"

@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.pipeline import compile_inputs
+from swarmvm.cli.commands import main
+from swarmvm.compiler.pipeline import compile_inputs
 
 CORPUS = Path(__file__).parent.parent / "corpus"
 SUPERVISORS = sorted(CORPUS.glob("*/*.yaml"))

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm.image import chunks
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.image import chunks
+from swarmvm.compiler.pipeline import compile_inputs
 
 ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "corpus"

@@ -16,9 +16,9 @@ from types import SimpleNamespace
 
 import pytest
 
-from swarmvm.image import pack
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_C, RUNTIME_CPP, RUNTIME_PY_DIR, image_format
+from swarmvm.compiler.image import pack
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import RUNTIME_C, RUNTIME_CPP, RUNTIME_PY_DIR, image_format
 
 F = image_format()
 E = F.ErrorCode
@@ -83,7 +83,7 @@ def _resized(raw, body):
 
 
 def _tables(raw):
-    """The tables of a good image as the writer (swarmvm.image.pack) takes them, to edit."""
+    """The tables of a good image as the writer (swarmvm.compiler.image.pack) takes them, to edit."""
     image = F.Image.parse(raw)
     return SimpleNamespace(
         num_events=image.num_events, num_supervisors=image.num_supervisors,
@@ -385,7 +385,7 @@ ENDLESS = Path("/dev/zero")
 def test_an_endless_file_is_refused_in_bounded_memory(readers):
     """Python and C++ read at most the maximum image size + 1 bytes of /dev/zero: limited to
     300 MB (an unbounded read would exceed it) both refuse it with LENGTH; the command line
-    (any input file, read through swarmvm.errors.read_input) refuses it with one line."""
+    (any input file, read through swarmvm.boundary.errors.read_input) refuses it with one line."""
     limit = 300 * 1024 * 1024
     probe = ("import resource, sys\n"
              "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
@@ -399,7 +399,7 @@ def test_an_endless_file_is_refused_in_bounded_memory(readers):
     assert (run.returncode, run.stdout.strip()) == (0, str(int(E.LENGTH))), run.stderr[-1000:]
     cli = ("import resource, sys\n"
            "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
-           "from swarmvm.cli import main\n"
+           "from swarmvm.cli.commands import main\n"
            "main(['check', '/dev/zero'])\n" % (2 * limit, 2 * limit))
     run = subprocess.run([sys.executable, "-c", cli], capture_output=True, text=True, timeout=60)
     assert run.returncode == 2 and run.stderr.startswith("swarmvm: error: /dev/zero: file is over"), run.stderr[-1000:]
@@ -417,7 +417,7 @@ def test_the_command_line_refuses_every_bad_image_in_one_line_and_runs_every_goo
     a script names events)."""
     from click.testing import CliRunner
 
-    from swarmvm.cli import main
+    from swarmvm.cli.commands import main
     script = tmp_path / "empty.script"
     script.write_text("-\n")
     for name, (raw, code) in all_cases().items():

@@ -15,7 +15,7 @@ import pytest
 
 from models.model_cases import gen_text, run
 from swarmvm import api
-from swarmvm.product import DEFAULT_MAX_STATES
+from swarmvm.models.product import DEFAULT_MAX_STATES
 
 REFUSAL = re.compile(r"swarmvm: error: [^\n]+: --max-states: (?:[^\n]+: )?[^\n]+ reached (\d+) states, over the budget of "
                      r"(\d+) states; raise it with --max-states N \(max_states= in the API\)\n\Z")

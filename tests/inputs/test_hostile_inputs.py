@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus"
 WORKER = (CORPUS / "openswarm" / "energy_worker.yaml").read_text()

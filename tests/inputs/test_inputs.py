@@ -7,10 +7,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.errors import MAX_BYTES
-from swarmvm.load_supervisor import load_supervisor
-from swarmvm.pipeline import compile_inputs
+from swarmvm.cli.commands import main
+from swarmvm.boundary.errors import MAX_BYTES
+from swarmvm.readers.supervisor_yaml import load_supervisor
+from swarmvm.compiler.pipeline import compile_inputs
 
 INPUTS = Path(__file__).parent
 MALFORMED = sorted((INPUTS / "malformed").glob("*.yaml"))

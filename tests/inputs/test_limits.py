@@ -4,7 +4,7 @@ exit status 2, nothing written; at the limit it works."""
 from click.testing import CliRunner
 
 from checkout import EXAMPLE
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 
 def supervisors(count):
@@ -94,7 +94,7 @@ def test_255_events_load_and_256_do_not_in_every_format(tmp_path):
 
 
 def test_a_file_of_exactly_the_size_limit_is_read(tmp_path):
-    from swarmvm.errors import MAX_BYTES
+    from swarmvm.boundary.errors import MAX_BYTES
     text = EXAMPLE.read_text()
     padded = tmp_path / "padded.yaml"
     padded.write_text(text + "#" * (MAX_BYTES - len(text.encode()) - 1) + "\n")

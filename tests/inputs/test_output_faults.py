@@ -1,6 +1,6 @@
 """Output is a transaction, shown in the manner of SQLite's I/O error tests.
 
-Every file operation of swarmvm.output goes through ``output.OPS``. A clean run of a ``gen``
+Every file operation of swarmvm.boundary.output goes through ``output.OPS``. A clean run of a ``gen``
 (or a ``pack``) over an older output counts its operations; then, for every k, the run is
 repeated with the k-th operation failing (EIO, then ENOSPC) or with SIGINT arriving at it,
 and afterwards the folder must be byte for byte the old output or the new one, with no
@@ -19,7 +19,8 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm import api, output
+from swarmvm import api
+from swarmvm.boundary import output
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus" / "openswarm"
 NEW, OLD = str(CORPUS / "energy_worker.yaml"), str(CORPUS / "network_worker.yaml")
@@ -203,8 +204,8 @@ def test_signals_are_not_touched_outside_the_main_thread(tmp_path):
 # product, knows about the pause.
 PAUSING_GEN = r"""
 import os, sys, time
-from swarmvm import output
-from swarmvm.cli import main
+from swarmvm.boundary import output
+from swarmvm.cli.commands import main
 
 at, ready, go = int(sys.argv[1]), sys.argv[2], sys.argv[3]
 real, seen = output.OPS, []

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 EXAMPLE = str(Path(__file__).resolve().parents[2] / "examples" / "energy_worker" / "supervisor.yaml")
 

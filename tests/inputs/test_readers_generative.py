@@ -2,7 +2,7 @@
 
 Two generative properties (hypothesis):
 
-- the Lua literal reader (swarmvm.lua_literal) and the ``.nza`` reader, given arbitrary text and
+- the Lua literal reader (swarmvm.readers.lua_literal) and the ``.nza`` reader, given arbitrary text and
   structured random Lua-like literals (nested tables, keys of every kind, long numbers, strings
   with escapes, huge exponents, deep nesting), either load or refuse: LuaSyntaxError from the
   literal reader, one printable InputError line from the ``.nza`` reader; nothing else;
@@ -21,7 +21,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fuzz import readers
-from swarmvm.lua_literal import LuaSyntaxError, parse_lua_table
+from swarmvm.readers.lua_literal import LuaSyntaxError, parse_lua_table
 
 # The profile's settings (derandomized or not, no deadline), with more examples than its default:
 # a reader refuses most inputs in well under a millisecond.

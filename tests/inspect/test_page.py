@@ -11,9 +11,10 @@ from html.parser import HTMLParser
 import pytest
 
 from inspect_cases import EXAMPLE, FLIPFLOP, NETWORK_WORKER, ROOT, swarmvm, trace_lines, write_trace
-from swarmvm import api, inspect_page
-from swarmvm.escape import script_json
-from swarmvm.inspect_page import ASSETS
+from swarmvm import api
+from swarmvm.inspector import page as inspect_page
+from swarmvm.boundary.escape import script_json
+from swarmvm.inspector.page import ASSETS
 
 
 class _Parts(HTMLParser):
@@ -168,7 +169,7 @@ def test_a_page_over_the_limit_keeps_a_window_and_summarises_the_rest(tmp_path, 
 
 def test_the_command_says_where_the_next_page_starts(tmp_path, monkeypatch):
     from click.testing import CliRunner
-    from swarmvm.cli import main
+    from swarmvm.cli.commands import main
     monkeypatch.setattr(inspect_page, "ROBOT_STEPS", 30)
     trace = write_trace(tmp_path, FLIPFLOP, 50, 1, "r.trace")
     result = CliRunner().invoke(main, ["inspect", str(FLIPFLOP), str(trace), "-o", str(tmp_path / "p.html")])

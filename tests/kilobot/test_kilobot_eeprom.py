@@ -13,7 +13,7 @@ from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
 from kilobot.needs import board, board_or_skip
 from kilobot_stream_demo import SUPERVISOR_B, Program
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 EEPROM_BYTES = 1024
 

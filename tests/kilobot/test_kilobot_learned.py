@@ -19,9 +19,9 @@ from pathlib import Path
 import pytest
 
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
-from swarmvm.pipeline import compile_inputs
-from swarmvm.output import write_outputs
-from swarmvm.runtime import RUNTIME_PY_DIR
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.boundary.output import write_outputs
+from swarmvm.compiler.runtime_files import RUNTIME_PY_DIR
 from swarmvm.targets import generate
 
 sys.path.insert(0, str(RUNTIME_PY_DIR))

@@ -11,8 +11,8 @@ import pytest
 
 from checkout import EXAMPLE, ROOT
 from kilobot.needs import kilolib_or_skip
-from swarmvm.output import write_outputs
-from swarmvm.pipeline import compile_inputs
+from swarmvm.boundary.output import write_outputs
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import generate
 
 FORAGER = ROOT / "examples" / "learning" / "supervisor.yaml"     # 5 states x 6 controllable events

@@ -18,7 +18,7 @@ import pytest
 
 from kilobot.needs import kilolib_or_skip
 from kilobot_stream_demo import RUNNING, Program, reference, split
-from swarmvm.runtime import RUNTIME_C
+from swarmvm.compiler.runtime_files import RUNTIME_C
 
 NORMAL = 0
 TX_PERIOD_TICKS = 16        # kilolib: kilo_tx_period 3906 Timer0 counts, 255 per tick

@@ -12,9 +12,9 @@ import pytest
 
 from kilobot.needs import kilolib_or_skip
 from kilobot_stream_demo import CORPUS, RUNNING, STRICT, SUPERVISOR_A, SUPERVISOR_B, Program, reference, split
-from swarmvm.image import chunks
-from swarmvm.pipeline import compile_inputs
-from swarmvm.output import write_outputs
+from swarmvm.compiler.image import chunks
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.boundary.output import write_outputs
 from swarmvm.targets import generate
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU

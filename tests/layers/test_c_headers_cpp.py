@@ -8,7 +8,7 @@ import subprocess
 import pytest
 
 from kilobot.needs import kilolib_or_skip
-from swarmvm.runtime import RUNTIME_C
+from swarmvm.compiler.runtime_files import RUNTIME_C
 
 from imports import ROOT
 

@@ -13,8 +13,9 @@ from imports import ROOT, cycles, import_graph, imported_names, module_files
 
 # What the studies may import from the compiler: the typed API and the mechanisms every caller
 # of it uses (its errors, the terminal's one-line output, the click option types, the one way
-# files are written).
-PUBLIC = {"swarmvm", "swarmvm.api", "swarmvm.errors", "swarmvm.terminal", "swarmvm.options", "swarmvm.output"}
+# files are written), and the subpackages that hold them (whose __init__ holds a docstring only).
+PUBLIC = {"swarmvm", "swarmvm.api", "swarmvm.boundary", "swarmvm.boundary.errors", "swarmvm.boundary.terminal",
+          "swarmvm.boundary.output", "swarmvm.cli", "swarmvm.cli.options"}
 
 # The folders the package is installed from (pyproject.toml's package-dir).
 SOURCE_FOLDERS = ("generator", "templates", "runtime_c", "runtime_cpp", "runtime_py", "studies")
@@ -75,7 +76,7 @@ def test_the_studies_import_only_the_public_api():
 def test_the_compiler_command_line_imports_no_study():
     run = _run("""
         import sys
-        import swarmvm.cli
+        import swarmvm.cli.commands
         print(sorted(m for m in sys.modules if m.startswith("swarmvm.studies")))
     """)
     assert (run.returncode, run.stdout, run.stderr) == (0, "[]\n", "")
@@ -94,7 +95,7 @@ def test_every_compiler_verb_works_when_the_studies_cannot_be_imported(tmp_path)
                     raise ImportError("studies blocked")
 
         sys.meta_path.insert(0, NoStudies())
-        from swarmvm.cli import main
+        from swarmvm.cli.commands import main
         for args in (["--help"], ["gen", "--help"], ["check", %r], ["gen", %r, "-t", "c", "-o", %r]):
             try:
                 main(args, prog_name="swarmvm")
@@ -114,7 +115,7 @@ def test_every_compiler_verb_works_when_the_studies_cannot_be_imported(tmp_path)
 
 def test_the_study_verbs_list_and_run_their_subcommands():
     run = _run("""
-        from swarmvm.cli import main
+        from swarmvm.cli.commands import main
         for verb in ("sim", "sweep", "plot", "bounds"):
             try:
                 main([verb, "--help"], prog_name="swarmvm")
@@ -166,7 +167,7 @@ def test_importing_a_module_of_the_package_changes_nothing_else():
 def test_the_reference_vm_loads_without_registering_runtime_files():
     run = _run("""
         import sys
-        from swarmvm.runtime import image_format, python_vm
+        from swarmvm.compiler.runtime_files import image_format, python_vm
         vm = python_vm()
         print(vm.ImageError is image_format().ImageError, vm.__name__,
               sorted(m for m in sys.modules if m.startswith("swarmvm_")))

@@ -7,7 +7,7 @@ the runs' images are in flash, RAM and EEPROM (the policy reads them through the
 import pytest
 
 import learnbuild
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm_learn import LearnedPolicy, PolicyError, q16
 from swarmvm_vm import VM, Image
 

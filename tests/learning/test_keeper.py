@@ -7,7 +7,7 @@ import re
 from pathlib import Path
 
 import learnbuild
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 FORAGER = learnbuild.ROOT / "examples" / "learning" / "supervisor.yaml"
 EVERY = 50

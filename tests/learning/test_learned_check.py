@@ -11,7 +11,7 @@ import sys
 from click.testing import CliRunner
 
 from drone import MEAN, SCALE, SEED_LABELS, SEED_POINTS, delivery_stream
-from swarmvm.cli import main as cli
+from swarmvm.cli.commands import main as cli
 from swarmvm_learn import LinearClassifier
 
 HERE = os.path.dirname(os.path.abspath(__file__))

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm_learn import LearnedPolicy, exp_neg_q15, q16
 from swarmvm_vm import VM, Image
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm_vm import VM, Image
 
 HERE = Path(__file__).resolve().parent

@@ -9,8 +9,8 @@ import faudes
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.faudes_bridge import system_from_model
+from swarmvm.cli.commands import main
+from swarmvm.models.faudes_bridge import system_from_model
 
 CORPUS = Path(__file__).resolve().parent.parent / "corpus"
 SYNTHESIS = CORPUS / "synthesis" / "energy_worker"

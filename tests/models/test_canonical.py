@@ -9,8 +9,8 @@ import pytest
 import yaml
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.pipeline import compile_inputs
+from swarmvm.cli.commands import main
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import TARGETS
 
 CORPUS = Path(__file__).parent.parent / "corpus"

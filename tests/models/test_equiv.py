@@ -9,9 +9,9 @@ import faudes
 import pytest
 
 from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, run
-from swarmvm.equiv import compare
-from swarmvm.pipeline import compile_inputs
-from swarmvm.product import Conjunction
+from swarmvm.models.equivalence import compare
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.models.product import Conjunction
 
 
 def model(path):

@@ -10,8 +10,8 @@ import faudes
 import pytest
 
 from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, conjunction, need_tools, run
-from swarmvm.faudes_bridge import system_from_model
-from swarmvm.pipeline import compile_inputs
+from swarmvm.models.faudes_bridge import system_from_model
+from swarmvm.compiler.pipeline import compile_inputs
 
 
 def model(*paths):

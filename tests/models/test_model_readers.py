@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 
 from models.model_cases import SYNTHESIS, run
-from swarmvm.lua_literal import LuaSyntaxError, parse_lua_table
-from swarmvm.pipeline import compile_inputs
+from swarmvm.readers.lua_literal import LuaSyntaxError, parse_lua_table
+from swarmvm.compiler.pipeline import compile_inputs
 
 DATA = Path(__file__).resolve().parent / "data"
 G1 = [SYNTHESIS / "G1.xml", SYNTHESIS / "G1.nza", DATA / "G1.xmd", DATA / "G1.gen"]

@@ -5,7 +5,7 @@ one compiled from the published supervisor.yaml."""
 import subprocess
 
 from models.model_cases import ENERGY_WORKER, SYNTHESIS, need_tools, run
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 
 def test_synthesised_tables_are_the_published_ones_byte_for_byte(tmp_path):

@@ -1,4 +1,4 @@
-"""One naming rule (swarmvm/naming.py): callback stems, message names and codes, model names;
+"""One naming rule (generator/compiler/naming.py): callback stems, message names and codes, model names;
 collisions and reserved names refused before anything is written; a kept user file whose
 callbacks drifted from the model is named in a warning with a fresh skeleton beside it."""
 
@@ -7,8 +7,8 @@ import subprocess
 import pytest
 
 from conformance.cases import supervisor_yaml
-from swarmvm.errors import InputError
-from swarmvm.naming import MAX_MODEL_NAME, callback_stem, message_code, message_name, model_identifier
+from swarmvm.boundary.errors import InputError
+from swarmvm.compiler.naming import MAX_MODEL_NAME, callback_stem, message_code, message_name, model_identifier
 from swarmvm.targets import TARGETS
 
 # Two local events "x" and "_x"/"received_x" clash once "_x" is spelled received_x.

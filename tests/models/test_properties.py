@@ -4,8 +4,8 @@ it, stays quiet on the same set mended, and reports on the whole corpus."""
 import pytest
 
 from models.model_cases import CORPUS, ENERGY_WORKER, SUPERVISORS, run
-from swarmvm.pipeline import compile_inputs
-from swarmvm.properties import CHECKS, check_properties
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.models.properties import CHECKS, check_properties
 
 
 def report(*paths):

@@ -9,12 +9,12 @@ import faudes
 import pytest
 
 from models.model_cases import ENERGY_WORKER, SYNTHESIS, conjunction, run
-from swarmvm.faudes_bridge import system_from_local
-from swarmvm.load_automata import load_automata
-from swarmvm.pipeline import compile_inputs, compile_spec
-from swarmvm.runtime import python_vm
-from swarmvm.synth import models_by_name, synthesise
-from swarmvm.synth_script import parse_synth_script
+from swarmvm.models.faudes_bridge import system_from_local
+from swarmvm.readers.automata import load_automata
+from swarmvm.compiler.pipeline import compile_inputs, compile_spec
+from swarmvm.compiler.runtime_files import python_vm
+from swarmvm.models.synthesis import models_by_name, synthesise
+from swarmvm.readers.synth_script import parse_synth_script
 
 PLANTS = {1: ("G1", "G3"), 2: ("G1", "G3"), 3: ("G1", "G2"), 4: ("G1", "G2")}
 

@@ -93,7 +93,7 @@ def test_the_runner_gives_cosmic_ray_absolute_paths_when_work_is_relative(tmp_pa
     monkeypatch.setattr(mutation, "run_module", lambda module, tests, kept, work, tree, env, survivors:
                         seen.append((work, tree)))
     monkeypatch.setattr(mutation.subprocess, "run", lambda *args, **kwargs: type("Run", (), {"returncode": 0}))
-    assert mutation.main(["--work", "build/mutation", "--module", "generator/naming.py"]) == 0
+    assert mutation.main(["--work", "build/mutation", "--module", "generator/compiler/naming.py"]) == 0
     assert seen == [(tmp_path / "build" / "mutation", tmp_path / "build" / "mutation" / "tree")]
 
 

@@ -1,12 +1,12 @@
-"""The canonical form (swarmvm/canonical.py) pinned where `make mutation` found it unpinned
+"""The canonical form (generator/compiler/canonical.py) pinned where `make mutation` found it unpinned
 (issue 29, docs/mutation.md): the unreachable-states warning on both sides of its 20-state cut
 and its absence when every state is reached, and the search from the input's current state when
 the initial state does not reach it."""
 
 import pytest
 
-from swarmvm.canonical import canonicalise
-from swarmvm.model import LocalSupervisor, Supervisors, Transition
+from swarmvm.compiler.canonical import canonicalise
+from swarmvm.compiler.model import LocalSupervisor, Supervisors, Transition
 
 
 def one_supervisor(states, initial=0, current=None):

@@ -1,17 +1,17 @@
-"""The libFAUDES .gen reader (swarmvm/read_gen.py) pinned where `make mutation` found it unpinned
+"""The libFAUDES .gen reader (generator/readers/faudes_gen.py) pinned where `make mutation` found it unpinned
 (issue 29, docs/mutation.md): <Consecutive> ranges by known answers and on both sides of their
 limit, the old style's generator name, empty sections, and the refusals' line numbers."""
 
 import pytest
 
-from swarmvm.errors import InputError
-from swarmvm.read_gen import load_gen
+from swarmvm.boundary.errors import InputError
+from swarmvm.readers.faudes_gen import read_gen
 
 
 def read(tmp_path, text):
     path = tmp_path / "g.gen"
     path.write_text(text)
-    return load_gen(str(path))
+    return read_gen(str(path))
 
 
 def refusal(tmp_path, text):

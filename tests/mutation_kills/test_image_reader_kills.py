@@ -5,7 +5,7 @@ the other image tests (issue 29, docs/mutation.md)."""
 import pytest
 
 from one_state_image import one_state_image
-from swarmvm.runtime import image_format
+from swarmvm.compiler.runtime_files import image_format
 
 FORMAT = image_format()
 

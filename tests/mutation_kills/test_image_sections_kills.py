@@ -8,10 +8,10 @@ import struct
 
 import pytest
 
-from swarmvm.automaton import AutomatonBuilder
-from swarmvm.errors import InputError
+from swarmvm.readers.automaton import AutomatonBuilder
+from swarmvm.boundary.errors import InputError
 from one_state_image import one_state_image
-from swarmvm.runtime import image_format
+from swarmvm.compiler.runtime_files import image_format
 
 F = image_format()
 

@@ -1,14 +1,14 @@
-"""The image writer (swarmvm/image.py) pinned where `make mutation` found it unpinned (issue 29,
+"""The image writer (generator/compiler/image.py) pinned where `make mutation` found it unpinned (issue 29,
 docs/mutation.md): a model without events refused, the names section written unless asked not to,
 and the banner digest by known answers."""
 
 import pytest
 
-from swarmvm.errors import InputError
-from swarmvm.image import digest, pack
-from swarmvm.model import CanonicalSupervisor, Model
-from swarmvm.runtime import image_format
-from swarmvm.tables import build_tables
+from swarmvm.boundary.errors import InputError
+from swarmvm.compiler.image import digest, pack
+from swarmvm.compiler.model import CanonicalSupervisor, Model
+from swarmvm.compiler.runtime_files import image_format
+from swarmvm.compiler.tables import build_tables
 
 
 def two_events():

@@ -3,8 +3,8 @@ mutant survive."""
 
 import pytest
 
-from swarmvm.image import chunks
-from swarmvm.tables import q15, state_width
+from swarmvm.compiler.image import chunks
+from swarmvm.compiler.tables import q15, state_width
 
 
 def test_256_states_number_in_one_byte_and_257_need_two():

@@ -1,10 +1,10 @@
-"""The Lua table literal reader (swarmvm/lua_literal.py) pinned where `make mutation` found it
+"""The Lua table literal reader (generator/readers/lua_literal.py) pinned where `make mutation` found it
 unpinned (issue 29, docs/mutation.md): its limits on both sides, decimal escapes at their ends,
 the keys it refuses with the reason, and each refusal's message and line."""
 
 import pytest
 
-from swarmvm.lua_literal import SHOWN, LuaSyntaxError, parse_lua_table
+from swarmvm.readers.lua_literal import SHOWN, LuaSyntaxError, parse_lua_table
 
 
 def refusal(text: str) -> str:

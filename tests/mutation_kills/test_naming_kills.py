@@ -1,4 +1,4 @@
-"""Model names and Kilobot messages (swarmvm/naming.py) pinned where `make mutation` found them
+"""Model names and Kilobot messages (generator/compiler/naming.py) pinned where `make mutation` found them
 unpinned (issue 29, docs/mutation.md): the refusals' messages word for word, a message collision
 found after an event that sends nothing, and the event names fixed once derived."""
 
@@ -6,9 +6,9 @@ import dataclasses
 
 import pytest
 
-from swarmvm.errors import InputError
-from swarmvm.model import Model
-from swarmvm.naming import MAX_MODEL_NAME, EventNames, argos_names, event_names, file_stem, kilobot_messages, model_identifier
+from swarmvm.boundary.errors import InputError
+from swarmvm.compiler.model import Model
+from swarmvm.compiler.naming import MAX_MODEL_NAME, EventNames, argos_names, event_names, file_stem, kilobot_messages, model_identifier
 
 
 @pytest.mark.parametrize("stem,prefix", [("svm_sct", "svm"), ("Kilo_x", "Kilo"), ("SCT_model", "SCT")])

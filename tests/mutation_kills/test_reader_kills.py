@@ -1,13 +1,13 @@
-"""The .xmd and .nza readers (swarmvm/read_xmd.py, read_nza.py) pinned where `make mutation`
+"""The .xmd and .nza readers (generator/readers/ides_xmd.py, read_nza.py) pinned where `make mutation`
 found them unpinned (issue 29, docs/mutation.md): an element without its id refused naming the
 attribute, and an .nza event without ``shared`` private, one with it public."""
 
 import pytest
 
-from swarmvm.errors import InputError
-from swarmvm.read_gen import load_gen
-from swarmvm.read_nza import load_nza
-from swarmvm.read_xmd import load_xmd
+from swarmvm.boundary.errors import InputError
+from swarmvm.readers.faudes_gen import read_gen
+from swarmvm.readers.nadzoru_nza import read_nza
+from swarmvm.readers.ides_xmd import read_xmd
 
 XMD = '<?xml version="1.0" encoding="UTF-8"?>\n<model type="FSA"><data>%s</data></model>\n'
 
@@ -16,7 +16,7 @@ def test_an_xmd_state_without_an_id_is_refused_naming_the_attribute(tmp_path):
     path = tmp_path / "g.xmd"
     path.write_text(XMD % "<state><properties><initial/></properties></state>")
     with pytest.raises(InputError) as refused:
-        load_xmd(str(path))
+        read_xmd(str(path))
     assert str(refused.value) == "%s: state: missing attribute id" % path
 
 
@@ -25,7 +25,7 @@ def test_an_nza_event_is_private_unless_shared(tmp_path):
     path.write_text('{ ["states"] = { [1] = { ["initial"] = true } }, ["events"] = { '
                     '[1] = { ["name"] = "a", ["controllable"] = true }, '
                     '[2] = { ["name"] = "b", ["controllable"] = false, ["shared"] = true } } }')
-    assert load_nza(str(path)).events == {"a": (True, False), "b": (False, True)}
+    assert read_nza(str(path)).events == {"a": (True, False), "b": (False, True)}
 
 
 def test_an_nza_state_is_neither_initial_nor_marked_unless_it_says_so(tmp_path):
@@ -35,12 +35,12 @@ def test_an_nza_state_is_neither_initial_nor_marked_unless_it_says_so(tmp_path):
     path.write_text('{ ["states"] = { [1] = { ["initial"] = true, ["marked"] = true }, [2] = { } }, '
                     '["events"] = { [1] = { ["name"] = "a", ["controllable"] = true } }, '
                     '["transitions"] = { [1] = { ["source"] = 1, ["target"] = 2, ["event"] = 1 } } }')
-    supervisor = load_nza(str(path)).supervisor
+    supervisor = read_nza(str(path)).supervisor
     assert supervisor.initial == 0 and supervisor.marked == frozenset({0}) and len(supervisor.states) == 2
 
 
-@pytest.mark.parametrize("name, data, load, byte", [("g.nza", b"{ \xff }", load_nza, 2),
-                                                    ("g.gen", b"<Generator> \xff", load_gen, 12)])
+@pytest.mark.parametrize("name, data, load, byte", [("g.nza", b"{ \xff }", read_nza, 2),
+                                                    ("g.gen", b"<Generator> \xff", read_gen, 12)])
 def test_a_file_not_in_utf8_is_refused_naming_the_byte(tmp_path, name, data, load, byte):
     path = tmp_path / name
     path.write_bytes(data)
@@ -53,7 +53,7 @@ def test_an_nza_list_entry_that_is_not_a_table_is_refused_naming_it(tmp_path):
     path = tmp_path / "g.nza"
     path.write_text('{ ["states"] = { [1] = { ["initial"] = true }, [2] = 5 } }')
     with pytest.raises(InputError) as refused:
-        load_nza(str(path))
+        read_nza(str(path))
     assert str(refused.value) == "%s: states[2]: expected a table" % path
 
 
@@ -65,7 +65,7 @@ def test_an_nza_index_must_be_an_integer_in_range(tmp_path, value, shown):
                     '["controllable"] = true } }, ["transitions"] = { [1] = { ["source"] = %s, ["target"] = 1, '
                     '["event"] = 1 } } }' % value)
     with pytest.raises(InputError) as refused:
-        load_nza(str(path))
+        read_nza(str(path))
     assert str(refused.value) == "%s: transitions[1].source: expected an index in 1..1, got %s" % (path, shown)
 
 
@@ -74,5 +74,5 @@ def test_an_nza_list_that_is_not_a_sequence_is_refused(tmp_path, states):
     path = tmp_path / "g.nza"
     path.write_text('{ ["states"] = %s }' % states)
     with pytest.raises(InputError) as refused:
-        load_nza(str(path))
+        read_nza(str(path))
     assert str(refused.value) == "%s: states: expected a list of tables indexed 1..n" % path

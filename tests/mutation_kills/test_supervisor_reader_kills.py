@@ -1,4 +1,4 @@
-"""The supervisor.yaml reader (swarmvm/load_supervisor.py) pinned where `make mutation` found it
+"""The supervisor.yaml reader (generator/readers/supervisor_yaml.py) pinned where `make mutation` found it
 unpinned (issue 29, docs/mutation.md): each refusal's exact one line (file, key, where, message),
 the bounds on both sides (a probability of 0 and of 1, a target byte of 255 and of 256, a current
 state one under and at the number of states, a value shown whole at 60 characters and cut at 61),
@@ -13,8 +13,8 @@ from fractions import Fraction
 import pytest
 import yaml
 
-from swarmvm.errors import InputError
-from swarmvm.load_supervisor import load_supervisor
+from swarmvm.boundary.errors import InputError
+from swarmvm.readers.supervisor_yaml import load_supervisor
 
 # Two events, a (controllable) and b; one supervisor of two states: 0 -a-> 1, 0 -b-> 0, 1 -b-> 0.
 DATA = [2, "EV_a", 0, 1, "EV_b", 0, 0, 1, "EV_b", 0, 0]

@@ -1,4 +1,4 @@
-"""The VM tables (swarmvm/tables.py) pinned where `make mutation` found them unpinned (issue 29,
+"""The VM tables (generator/compiler/tables.py) pinned where `make mutation` found them unpinned (issue 29,
 docs/mutation.md): each transition's Q15 probability, by a known answer on both kinds of event,
 and the tables fixed once built."""
 
@@ -7,8 +7,8 @@ from fractions import Fraction
 
 import pytest
 
-from swarmvm.model import CanonicalSupervisor, Model
-from swarmvm.tables import build_tables
+from swarmvm.compiler.model import CanonicalSupervisor, Model
+from swarmvm.compiler.tables import build_tables
 
 
 def probabilistic_model():

@@ -16,7 +16,7 @@ import pytest
 
 from conformance.cases import compiled_image, supervisor_yaml
 from one_state_image import one_state_image
-from swarmvm.runtime import RUNTIME_PY_DIR, image_format
+from swarmvm.compiler.runtime_files import RUNTIME_PY_DIR, image_format
 
 F = image_format()
 

@@ -8,8 +8,8 @@ import xml.etree.ElementTree as ET
 import faudes
 import pytest
 
-from swarmvm.faudes_bridge import build_system
-from swarmvm.pipeline import compile_inputs
+from swarmvm.models.faudes_bridge import build_system
+from swarmvm.compiler.pipeline import compile_inputs
 
 AUTOMATA = Path(__file__).parent.parent / "corpus" / "automata"
 XML = sorted(AUTOMATA.glob("*.xml"))

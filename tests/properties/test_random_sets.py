@@ -27,9 +27,9 @@ from conformance.file_oracle import FileOracle
 from kilobot.needs import kilolib_or_skip
 from properties.strategies import MODEL_NAMES, RUN_OPTIONS, SupervisorSet, scripts, supervisor_sets
 from swarmvm import api
-from swarmvm.pipeline import compile_inputs
-from swarmvm.runtime import RUNTIME_CPP
-from swarmvm.script import format_script
+from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import RUNTIME_CPP
+from swarmvm.readers.event_script import format_script
 
 
 def write_set(folder, supervisor_set):

@@ -8,7 +8,7 @@ import random
 import pytest
 
 from checkout import EXAMPLE
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 
 @pytest.fixture

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from conformance.cases import HOOKED, SWAP_FIRST, SWAP_SECOND
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 CORPUS = Path(__file__).parent.parent / "corpus"
 
@@ -149,7 +149,7 @@ def test_reset_restores_states_counters_and_generator(vm):
 
 def test_nadzoru_compatible_api_runs_a_published_style_controller(vm, tmp_path):
     from click.testing import CliRunner
-    from swarmvm.cli import main
+    from swarmvm.cli.commands import main
     yaml_path = tmp_path / "supervisor.yaml"
     yaml_path.write_text((CORPUS / "openswarm" / "capbot_demo.yaml").read_text())
     assert CliRunner().invoke(main, ["pack", str(yaml_path), "-o", str(tmp_path / "supervisor.svm")]).exit_code == 0

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from conformance.cases import OPTIONS, SUPERVISORS, SWAP_FIRST, SWAP_SECOND, batch, reference_vm
-from swarmvm.pipeline import compile_inputs
+from swarmvm.compiler.pipeline import compile_inputs
 
 LEARN = import_module("swarmvm.runtime_py.swarmvm_learn")
 

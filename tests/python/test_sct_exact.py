@@ -216,7 +216,7 @@ def test_the_yaml_needs_no_pack_and_its_image_keeps_the_order(vm, tmp_path):
     keeps the file's event order and state numbers, so exact mode runs from the image alone, as
     on a robot without YAML support; an image without them refuses exact mode."""
     from swarmvm import api
-    from swarmvm.pipeline import compile_inputs
+    from swarmvm.compiler.pipeline import compile_inputs
     source = next(p for p in CORPUS if p.endswith("/network_worker.yaml"))
     (tmp_path / "supervisor.yaml").write_bytes(Path(source).read_bytes())
     from_yaml = vm.SCT(str(tmp_path / "supervisor.yaml"))          # no supervisor.svm beside it
@@ -359,13 +359,13 @@ def test_a_stale_or_missing_image_is_refused(vm, tmp_path, monkeypatch):
     source = next(p for p in CORPUS if p.endswith("/uav.yaml"))
     yaml_path, svm_path = tmp_path / "supervisor.yaml", tmp_path / "supervisor.svm"
     yaml_path.write_bytes(Path(source).read_bytes())
-    monkeypatch.setitem(__import__("sys").modules, "swarmvm.pipeline", None)     # a robot: no compiler
+    monkeypatch.setitem(__import__("sys").modules, "swarmvm.compiler.pipeline", None)     # a robot: no compiler
     fix = "run swarmvm pack %s -o %s" % (yaml_path, svm_path)
     with pytest.raises(FileNotFoundError, match="cannot read table image %s for %s: %s" % (svm_path, yaml_path, fix)):
         vm.SCT(str(yaml_path))
     monkeypatch.undo()
     _pack(yaml_path, svm_path)
-    monkeypatch.setitem(__import__("sys").modules, "swarmvm.pipeline", None)
+    monkeypatch.setitem(__import__("sys").modules, "swarmvm.compiler.pipeline", None)
     assert list(vm.SCT(str(yaml_path)).EV) == PublishedStep(source, False).events
     yaml_path.write_bytes(Path(source).read_bytes() + b"# edited\n")
     with pytest.raises(ValueError, match="%s is stale: it was packed from another version of %s: %s"
@@ -375,7 +375,7 @@ def test_a_stale_or_missing_image_is_refused(vm, tmp_path, monkeypatch):
 
 def test_the_packed_image_is_deterministic_and_keeps_the_start(tmp_path):
     """`swarmvm pack` twice gives the same bytes; the image records sup_current_state."""
-    from swarmvm.runtime import image_format
+    from swarmvm.compiler.runtime_files import image_format
     swarmvm_format = image_format()
     path = tmp_path / "supervisor.yaml"
     path.write_text(random_supervisor(4))

@@ -1,4 +1,4 @@
-"""swarmvm.escape, one function per output context (issue 23): each is read back, by the real
+"""swarmvm.boundary.escape, one function per output context (issue 23): each is read back, by the real
 reader of its context, as the text it was given (C by gcc, Python by its parser, YAML by PyYAML,
 CMake by cmake), or cannot leave its context (comments, terminal lines, Markdown cells)."""
 
@@ -11,7 +11,7 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from swarmvm import escape
+from swarmvm.boundary import escape
 
 # Arbitrary Unicode (no surrogates: they cannot be UTF-8), with the fragments that end contexts.
 HOSTILE = st.lists(st.one_of(st.text(max_size=8), st.sampled_from(

@@ -1,7 +1,7 @@
 """Each format number is defined once: the compiler and its templates import it, never retype it.
 
 The image format's limits and fixed-point one live in runtime_py/swarmvm_format.py, the
-Kilobot's message length in swarmvm.naming; a retyped copy would silently disagree the day one
+Kilobot's message length in swarmvm.compiler.naming; a retyped copy would silently disagree the day one
 changes. This test reads the compiler's source (generator/, with ``ast``: integer literals and
 strings other than docstrings, which only explain, for the large numbers) and the templates
 (every Jinja expression, and the text around them for the large numbers) for the values of those numbers, and fails on
@@ -12,11 +12,11 @@ import ast
 import re
 from pathlib import Path
 
-from swarmvm import naming
-from swarmvm.runtime import TEMPLATES, image_format, python_vm
+from swarmvm.compiler import naming
+from swarmvm.compiler.runtime_files import TEMPLATES, image_format, python_vm
 
 F = image_format()
-GENERATOR = Path(naming.__file__).resolve().parent
+GENERATOR = Path(naming.__file__).resolve().parents[1]     # generator/, the package swarmvm
 
 # {value: the definitions it is the value of}: the numbers a retyped copy would show as.
 WATCHED = {}
@@ -36,19 +36,19 @@ LARGE = {value for value in WATCHED if value > naming.KILOBOT_MESSAGE_BYTES}
 # {(file, value): (uses, why none of them is the format's number)}. A file listed here may use
 # the value that many times: one more use fails, and so does one fewer (keep this list exact).
 ALLOWED = {
-    ("naming.py", 255): (1, "FILE_NAME_BYTES: file systems' limit on a file name"),
-    ("naming.py", 9): (1, "KILOBOT_MESSAGE_BYTES itself: the payload of kilolib's message_t"),
-    ("naming.py", 65535): (1, "message_code folds FNV-1a to 16 bits (ARGoS range-and-bearing codes)"),
-    ("load_supervisor.py", 255): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
-    ("load_supervisor.py", 256): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
-    ("export.py", 255): (1, "writing Nadzoru's sup_data: a target as two bytes, hi and lo"),
-    ("escape.py", 256): (1, "the \\x escape holds one byte (a language's string escapes)"),
-    ("escape.py", 65536): (1, "the \\u escape holds 16 bits (a language's string escapes)"),
-    ("lua_literal.py", 255): (1, "Lua's decimal escape \\ddd holds one byte"),
-    ("qemu_gdb.py", 256): (1, "the GDB remote protocol's checksum is the byte sum modulo 256"),
-    ("footprint_cycles.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
-    ("kilobot_board/__init__.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
-    ("errors.py", 9): (1, "ascii_int's default: 9 digits always fit an int without a big-number parse"),
+    ("compiler/naming.py", 255): (1, "FILE_NAME_BYTES: file systems' limit on a file name"),
+    ("compiler/naming.py", 9): (1, "KILOBOT_MESSAGE_BYTES itself: the payload of kilolib's message_t"),
+    ("compiler/naming.py", 65535): (1, "message_code folds FNV-1a to 16 bits (ARGoS range-and-bearing codes)"),
+    ("readers/supervisor_yaml.py", 255): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
+    ("readers/supervisor_yaml.py", 256): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
+    ("models/export.py", 255): (1, "writing Nadzoru's sup_data: a target as two bytes, hi and lo"),
+    ("boundary/escape.py", 256): (1, "the \\x escape holds one byte (a language's string escapes)"),
+    ("boundary/escape.py", 65536): (1, "the \\u escape holds 16 bits (a language's string escapes)"),
+    ("readers/lua_literal.py", 255): (1, "Lua's decimal escape \\ddd holds one byte"),
+    ("footprint/qemu_gdb.py", 256): (1, "the GDB remote protocol's checksum is the byte sum modulo 256"),
+    ("footprint/cycles.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
+    ("footprint/kilobot_board/__init__.py", 256): (1, "kilolib's Timer0 compare match: 256 counts a tick"),
+    ("boundary/errors.py", 9): (1, "ascii_int's default: 9 digits always fit an int without a big-number parse"),
 }
 
 JINJA = re.compile(r"\{\{.*?\}\}|\{%.*?%\}", re.S)
@@ -107,7 +107,7 @@ def test_no_format_number_is_retyped():
                    for key, count in found.items() if ALLOWED.get(key, (0,))[0] != count}
     stale = {key: why for key, (count, why) in ALLOWED.items() if found.get(key, 0) != count}
     assert not unexplained and not stale, (
-        "retyped format numbers (import them from swarmvm_format / swarmvm.naming, or add the use to ALLOWED "
+        "retyped format numbers (import them from swarmvm_format / swarmvm.compiler.naming, or add the use to ALLOWED "
         "saying why it is another number): %r; ALLOWED entries that no longer match: %r" % (unexplained, stale))
 
 

@@ -5,8 +5,8 @@ from click.testing import CliRunner
 
 from conformance.cases import supervisor_yaml
 from swarmvm import api
-from swarmvm.cli import main
-from swarmvm.naming import fnv1a, message_code
+from swarmvm.cli.commands import main
+from swarmvm.compiler.naming import fnv1a, message_code
 
 OTHER_TARGETS = sorted(set(api.TARGETS) - {"argos"})
 

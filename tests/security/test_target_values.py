@@ -1,12 +1,12 @@
-"""What the build files compile and the glue carries is decided in Python (swarmvm.target_values):
+"""What the build files compile and the glue carries is decided in Python (swarmvm.targets.values):
 a build names only runtime files its target ships, every C target shares one feature rule, and a
-Kilobot message's payload is as long as swarmvm.naming says."""
+Kilobot message's payload is as long as swarmvm.compiler.naming says."""
 
 import pytest
 
 from conformance.cases import supervisor_yaml
-from swarmvm import target_values
-from swarmvm.pipeline import compile_inputs
+from swarmvm.targets import values as target_values
+from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import TARGETS, generate
 
 # The folder a target's build file names the runtime files from (the CapBot's is Zephyr's src/).

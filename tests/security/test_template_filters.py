@@ -1,4 +1,4 @@
-"""Every value a template writes passes through one of swarmvm.escape's filters (issue 23).
+"""Every value a template writes passes through one of swarmvm.boundary.escape's filters (issue 23).
 
 The check reads each template's syntax tree: an expression printed by ``{{ }}`` must end in an
 escaping filter, be a constant, a macro call (whose body is checked the same way), or a choice
@@ -11,8 +11,8 @@ import jinja2
 import pytest
 from jinja2 import nodes
 
-from swarmvm.escape import FILTERS
-from swarmvm.render import ENV
+from swarmvm.boundary.escape import FILTERS
+from swarmvm.compiler.render import ENV
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 # The escape module's filters, and render's bytes-to-hexadecimal filter (its input is bytes).

@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 from swarmvm.studies.drone_delivery import sweep
 
 DASK = str(Path(sys.executable).with_name("dask"))

@@ -6,7 +6,7 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 from swarmvm.studies.energy_replenishment.bounds import (MobileRates, Rates, best_transfer_period,
                                                           constant_supply_bound, fixed_bound, mobile_bound)
 

@@ -81,7 +81,7 @@ def test_plot_draws_the_figures_at_the_rates_the_sweep_had(tmp_path):
     figure of such a sweep came out empty, with matplotlib's warnings."""
     from click.testing import CliRunner
 
-    from swarmvm.cli import main
+    from swarmvm.cli.commands import main
     from swarmvm.studies import sweeps
     for p in sweep.grid(BASE, ["10"], seeds=[1, 2]):
         row = dict(key=sweep.trial_key(p), **p.to_dict(), work=100.0 * p.work_rate + p.seed, efficiency=0.5,

@@ -20,8 +20,8 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.options import FiniteFloat
+from swarmvm.cli.commands import main
+from swarmvm.cli.options import FiniteFloat
 from swarmvm.studies.drone_delivery import engine as uav_engine, sweep as uav_sweep
 from swarmvm.studies.energy_replenishment import sweep as energy_sweep, trial as energy_trial
 

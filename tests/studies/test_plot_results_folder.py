@@ -8,7 +8,7 @@ import shlex
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 QUICK_UAV = ["--rules", "least-confident", "--thresholds", "", "--taus", "20", "--runs", "1", "--no-progress",
              "--weeks", "1", "--week-s", "4000", "--drones", "3", "--accuracy-samples", "10"]

@@ -6,8 +6,8 @@ seed itself from the clock, so that an energy trial did not repeat."""
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
-from swarmvm.options import SEED_MAX
+from swarmvm.cli.commands import main
+from swarmvm.cli.options import SEED_MAX
 from swarmvm.studies.drone_delivery import sweep as uav_sweep
 from swarmvm.studies.energy_replenishment import sweep as energy_sweep
 from swarmvm.studies.energy_replenishment.params import MAX_SEED, MIN_SEED

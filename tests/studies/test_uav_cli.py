@@ -5,7 +5,7 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from swarmvm.cli import main
+from swarmvm.cli.commands import main
 
 QUICK = ["--weeks", "1", "--week-s", "4000", "--drones", "5", "--accuracy-samples", "20"]
 

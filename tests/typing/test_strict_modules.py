@@ -10,9 +10,9 @@ ROOT = Path(__file__).resolve().parents[2]
 # The modules issue 28 names and the compiler's stages around them: loading, the model, the
 # tables, the image, rendering, the targets, and the Python runtime's format and VM.
 CORE = {
-    "generator.automaton", "generator.canonical", "generator.image", "generator.load_supervisor",
-    "generator.lua_literal", "generator.model", "generator.naming", "generator.pipeline", "generator.read_gen",
-    "generator.read_nza", "generator.read_xmd", "generator.render", "generator.tables", "generator.target_values",
+    "generator.readers.automaton", "generator.compiler.canonical", "generator.compiler.image", "generator.readers.supervisor_yaml",
+    "generator.readers.lua_literal", "generator.compiler.model", "generator.compiler.naming", "generator.compiler.pipeline", "generator.readers.faudes_gen",
+    "generator.readers.nadzoru_nza", "generator.readers.ides_xmd", "generator.compiler.render", "generator.compiler.tables", "generator.targets.values",
     "generator.targets", "runtime_py.swarmvm_format", "runtime_py.swarmvm_vm",
 }
 

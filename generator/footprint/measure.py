@@ -1,0 +1,303 @@
+"""Memory footprint of linked VM images: flash and static RAM, split into VM core, tables and
+application, with the Kilobot's hard limits and the seed's 100 kB KPI (docs/footprint.md).
+
+Only linked ELF files are read (pyelftools), so the figures are what the device holds:
+
+- a section is *flash* when it is loaded and read-only (code, constants, the image in
+  PROGMEM), *RAM* when it is writable and takes no file space (``.bss``, ``.noinit``), and
+  *both* when it is writable with contents (``.data``: its initialiser sits in flash and is
+  copied to RAM at reset). AVR's ``.eeprom``, fuse, lock and signature sections are neither.
+- the **tables** are the table image: the object whose bytes start with the image magic and
+  whose size is the image's own length field, wherever the build put it.
+- the **VM core** is what ``runtime_c/*.c`` defines (but for the robot runtime
+  ``swarmvm_kilobot.c``, which is application): a global symbol whose name one of those
+  files defines at file scope, a local symbol listed after the ``STT_FILE`` entry of one of
+  those files, and the VM instance (an object named ``vm`` or ``..._vm``) wherever it lives.
+- the **application** is the rest of each total: start-up code, C library, generated glue,
+  callbacks, and bytes no symbol accounts for (vector tables, alignment).
+"""
+
+import os
+import re
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from elftools.elf.constants import SH_FLAGS
+from elftools.elf.elffile import ELFFile
+
+from .stack import Stack
+
+if TYPE_CHECKING:
+    from .cycles import Cycles
+from ..compiler.runtime_files import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_PY, image_format
+
+FORMAT = image_format()
+TARGET_OF_MACHINE = {"EM_AVR": "kilobot", "EM_ARM": "capbot"}
+NOT_MEMORY = (".eeprom", ".fuse", ".lock", ".signature", ".user_signatures")
+VM_INSTANCE = re.compile(r"(^|_)vm$")
+# An external definition in the runtime's C sources: a line starting in column 0 with a type
+# (not static) and ending the declarator at '(' (function), '[' / '=' / ';' (object).
+DEFINITION = re.compile(r"^(?!typedef|extern|static|#)[A-Za-z_][\w\s\*]*?\**\b([A-Za-z_]\w*)\s*[\(\[=;]", re.M)
+
+KILOBOT_FLASH = 28672                  # 32 KB minus the bootloader at 0x7000
+KILOBOT_SRAM = 2048
+KILOBOT_MIN_STACK = 1024
+VM_KPI = 100000                        # the seed's KPI: a VM below 100 kB
+SEED_KPI_SOURCE = {"C++ VM (published)": 15699, "Python VM (published)": 7343}
+
+
+@dataclass(frozen=True)
+class Limits:
+    kilobot_flash: int = KILOBOT_FLASH
+    kilobot_sram: int = KILOBOT_SRAM
+    kilobot_min_stack: int = KILOBOT_MIN_STACK
+    vm: int = VM_KPI
+
+
+@dataclass
+class Split:
+    total: int = 0
+    core: int = 0
+    tables: int = 0
+    application: int = 0
+
+
+@dataclass
+class Footprint:
+    target: str
+    supervisor: str
+    elf: str
+    flash: Split = field(default_factory=Split)
+    ram: Split = field(default_factory=Split)
+    stack: Stack | None = None          # worst-case stack (footprint_stack), when measured
+    cycles: "Cycles | None" = None      # cycles per step with an event script (footprint_cycles)
+
+    @property
+    def vm(self):
+        """The VM proper (core and tables, flash and RAM), the figure the seed's KPI bounds."""
+        return self.flash.core + self.flash.tables + self.ram.core + self.ram.tables
+
+    def as_json(self) -> dict:
+        """The image as the JSON report writes it (and a baseline holds it)."""
+        image = dict(target=self.target, supervisor=self.supervisor, elf=self.elf, flash=asdict(self.flash),
+                     ram=asdict(self.ram), vm=self.vm)
+        if self.stack is not None:
+            image["stack"] = self.stack.as_json()
+        if self.cycles is not None:
+            image["cycles"] = self.cycles.as_json()
+        return image
+
+
+@dataclass(frozen=True)
+class Column:
+    """One figure of a row: its budget key, its heading in the tables, where the JSON report
+    holds it, and its unit. Budgets, deltas, the tables and the checks all go by this list, so a
+    figure added here (a worst-case stack, cycles per step) is budgeted and compared like the rest;
+    a row that lacks a column's figure (not measured) is left out of that column's checks."""
+    key: str
+    label: str
+    path: tuple[str, ...]
+    unit: str = "B"
+
+
+COLUMNS = (Column("flash", "flash", ("flash", "total")), Column("flash_core", "VM core", ("flash", "core")),
+           Column("flash_tables", "tables", ("flash", "tables")),
+           Column("flash_application", "application", ("flash", "application")),
+           Column("ram", "RAM", ("ram", "total")), Column("ram_core", "VM core", ("ram", "core")),
+           Column("ram_tables", "tables", ("ram", "tables")),
+           Column("ram_application", "application", ("ram", "application")),
+           Column("vm", "VM", ("vm",)), Column("stack", "stack", ("stack", "total")),
+           Column("stack_step", "VM step stack", ("stack", "step")),
+           Column("cycles_mean", "cycles/step", ("cycles", "mean"), "cycles"),
+           Column("cycles", "worst cycles/step", ("cycles", "worst"), "cycles"))
+COLUMN = {column.key: column for column in COLUMNS}
+STACK_COLUMN = {"total": "stack", "step": "stack_step"}    # Stack's figures -> their columns
+
+
+@dataclass(frozen=True)
+class Row:
+    """A row of a report, measured now or read from a baseline: the figures by column key, and
+    why a figure that was measured is not known (a stack bound: ``indirect call in f``)."""
+    target: str
+    supervisor: str
+    values: dict[str, int]
+    unknown: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return "%s/%s" % (self.target, self.supervisor)
+
+
+def column_value(image: dict, column: Column):
+    """The figure of ``column`` in a JSON image, or None when the image does not hold it."""
+    value = image
+    for key in column.path:
+        if not isinstance(value, dict) or key not in value:
+            return None
+        value = value[key]
+    return value
+
+
+def row_of(footprint: Footprint) -> Row:
+    image = footprint.as_json()
+    values = {c.key: column_value(image, c) for c in COLUMNS}
+    unknown = {STACK_COLUMN[key]: reason for key, reason in image.get("stack", {}).get("unknown", {}).items()}
+    return Row(footprint.target, footprint.supervisor, {k: v for k, v in values.items() if v is not None}, unknown)
+
+
+class FootprintError(Exception):
+    """An ELF that cannot be measured (no table image in it, unknown machine, a section or
+    symbol that lies outside what it belongs to)."""
+
+
+# Robot runtimes in runtime_c/ that run the VM as a program (kilolib's setup/loop, messages):
+# what a robot application needs around the VM, so they count as application, not VM core.
+PLATFORM_RUNTIMES = frozenset({"swarmvm_kilobot.c"})
+
+
+def runtime_names(runtime=RUNTIME_C):
+    """(global names the runtime's C sources define, their file names), platform runtimes aside."""
+    names, files = set(), set()
+    for source in sorted(Path(runtime).glob("*.c")):
+        if source.name in PLATFORM_RUNTIMES:
+            continue
+        files.add(source.name)
+        names.update(DEFINITION.findall(source.read_text()))
+    return names, files
+
+
+def _memory_kind(section):
+    """'flash', 'ram', 'both' or None for a section of a linked image."""
+    flags = section["sh_flags"]
+    if not flags & SH_FLAGS.SHF_ALLOC or section.name in NOT_MEMORY or section["sh_size"] == 0:
+        return None
+    if not flags & SH_FLAGS.SHF_WRITE:
+        return "flash"
+    return "ram" if section["sh_type"] == "SHT_NOBITS" else "both"
+
+
+def _check_section(path, section, file_size):
+    """FootprintError unless a memory section with contents lies within the file: its size is
+    counted and its bytes read (an image's header), so one that runs past the end would give
+    figures, or a read, that the file does not hold."""
+    if section["sh_type"] != "SHT_NOBITS" and section["sh_offset"] + section["sh_size"] > file_size:
+        raise FootprintError("%s: section %s (%d B at offset %d) runs past the end of the file (%d B)"
+                             % (path, section.name, section["sh_size"], section["sh_offset"], file_size))
+
+
+def _check_symbol(path, elf, symbol):
+    """FootprintError unless a sized symbol lies inside the section it names: its size is
+    counted in that section's bucket, and an image's bytes are read from there."""
+    index = symbol["st_shndx"]
+    if index >= elf.num_sections():
+        raise FootprintError("%s: symbol %s names section %d of %d" % (path, symbol.name, index, elf.num_sections()))
+    section = elf.get_section(index)
+    thumb = symbol["st_info"]["type"] == "STT_FUNC"      # an ARM Thumb function's address has bit 0 set
+    start = (symbol["st_value"] & ~1 if thumb else symbol["st_value"]) - section["sh_addr"]
+    if start < 0 or start + symbol["st_size"] > section["sh_size"]:
+        raise FootprintError("%s: symbol %s (%d B at 0x%x) lies outside its section %s (%d B at 0x%x)"
+                             % (path, symbol.name, symbol["st_size"], symbol["st_value"], section.name,
+                                section["sh_size"], section["sh_addr"]))
+
+
+def _symbols(elf):
+    """(symbol, defining file or None) for every sized object and function, aliases once."""
+    table = elf.get_section_by_name(".symtab")
+    if table is None:
+        raise FootprintError("no symbol table (stripped image)")
+    seen, current_file = set(), None
+    for symbol in table.iter_symbols():
+        kind, bind = symbol["st_info"]["type"], symbol["st_info"]["bind"]
+        if kind == "STT_FILE":
+            current_file = symbol.name
+            continue
+        if kind not in ("STT_FUNC", "STT_OBJECT") or symbol["st_size"] == 0:
+            continue
+        if not isinstance(symbol["st_shndx"], int):
+            continue
+        key = (symbol["st_shndx"], symbol["st_value"] & ~1)
+        if key in seen:
+            continue
+        seen.add(key)
+        yield symbol, (current_file if bind == "STB_LOCAL" else None)
+
+
+def _is_image(elf, symbol):
+    """Whether an object symbol holds a table image (magic, and its length field = its size)."""
+    if symbol["st_info"]["type"] != "STT_OBJECT" or symbol["st_size"] < FORMAT.MIN_IMAGE_SIZE:
+        return False
+    section = elf.get_section(symbol["st_shndx"])
+    if section["sh_type"] == "SHT_NOBITS":
+        return False
+    start = symbol["st_value"] - section["sh_addr"]         # inside the section: _check_symbol
+    header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
+    return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
+
+
+def table_image(path) -> bytes:
+    """The bytes of the table image linked into an ELF (the first symbol holding one)."""
+    with open(path, "rb") as handle:
+        elf = ELFFile(handle)
+        for symbol, _ in _symbols(elf):
+            _check_symbol(path, elf, symbol)
+            if _is_image(elf, symbol):
+                section = elf.get_section(symbol["st_shndx"])
+                start = symbol["st_value"] - section["sh_addr"]
+                return section.data()[start:start + symbol["st_size"]]
+    raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
+
+
+def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
+    """The Footprint of one linked ELF; target from its machine, supervisor from its name."""
+    core_names, core_files = runtime_names(runtime)
+    with open(path, "rb") as handle:
+        file_size = os.fstat(handle.fileno()).st_size
+        elf = ELFFile(handle)
+        machine = elf["e_machine"]
+        if target is None:
+            if machine not in TARGET_OF_MACHINE:
+                raise FootprintError("%s: machine %s is not a known VM target" % (path, machine))
+            target = TARGET_OF_MACHINE[machine]
+        result = Footprint(target, supervisor or Path(path).stem, str(path))
+        kinds = {}
+        for index, section in enumerate(elf.iter_sections()):
+            kind = _memory_kind(section)
+            kinds[index] = kind
+            if kind is not None:
+                _check_section(path, section, file_size)
+            if kind in ("flash", "both"):
+                result.flash.total += section["sh_size"]
+            if kind in ("ram", "both"):
+                result.ram.total += section["sh_size"]
+        images = 0
+        for symbol, local_file in _symbols(elf):
+            _check_symbol(path, elf, symbol)
+            kind = kinds[symbol["st_shndx"]]
+            if kind is None:
+                continue
+            if _is_image(elf, symbol):
+                bucket = "tables"
+                images += 1
+            elif (local_file in core_files if local_file is not None else symbol.name in core_names) \
+                    or (symbol["st_info"]["type"] == "STT_OBJECT" and VM_INSTANCE.search(symbol.name)):
+                bucket = "core"
+            else:
+                continue
+            for split, counted in ((result.flash, ("flash", "both")), (result.ram, ("ram", "both"))):
+                if kind in counted:
+                    setattr(split, bucket, getattr(split, bucket) + symbol["st_size"])
+        if images == 0:
+            raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
+    for split in (result.flash, result.ram):
+        split.application = split.total - split.core - split.tables
+    return result
+
+
+def source_sizes():
+    """Bytes of source of each runtime, to compare with the seed's KPI table."""
+    return {"Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)":
+                len(RUNTIME_PY.read_bytes()) + len(RUNTIME_FORMAT_PY.read_bytes()),
+            "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
+                sum(len((RUNTIME_C / n).read_bytes()) for n in ("swarmvm.c", "swarmvm.h")),
+            "C++ VM (runtime_cpp/swarmvm.hpp)": len((RUNTIME_CPP / "swarmvm.hpp").read_bytes())}

@@ -1,0 +1,184 @@
+"""The inspector's page (docs/inspect.md): one self-contained HTML file replaying what a swarm's
+VMs did against the supervisors they ran.
+
+Everything is decided here, when the page is written, so the browser only displays: Graphviz
+lays out each local supervisor (swarmvm.models.pictures' DOT, names already escaped there), every
+distinct vector of states is numbered once with its enabled controllable events, and each run
+becomes arrays of small integers (a vector number, a fired-events number and the violation
+counter per step). The page carries its own script and style (templates/inspect/, package
+data) and a Content-Security-Policy that allows no fetch at all: it opens from ``file://``
+offline, and the same inputs give the same bytes.
+
+Size: a page keeps at most :data:`ROBOT_STEPS` steps of all runs together (20 robots of 50,000
+steps); beyond, each run keeps the same window of steps from ``first_step`` and the page
+summarises the whole runs (length, last states, violations, events counted): another
+``--first-step`` pages through the rest."""
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+from ..boundary.escape import html, script_json
+from ..boundary.output import write_outputs
+from ..compiler.model import Model
+from ..compiler.runtime_files import TEMPLATES
+from ..models.pictures import dot_to_svg, supervisor_dot
+from ..models.product import Conjunction, events_of
+from .trace import Run, first_difference, read_trace
+
+ROBOT_STEPS = 1_000_000
+ASSETS = ("inspect.css", "inspect.js")
+# What Graphviz writes before the <svg> element (XML prolog, DOCTYPE, comments) and the namespace
+# attributes inline SVG does not need: gone, so the page holds no URL and no tool version.
+_SVG_COMMENT = re.compile(r"<!--.*?-->", re.S)
+_SVG_NAMESPACES = re.compile(r' xmlns(:xlink)?="[^"]*"')
+_CSP = "default-src 'none'; style-src 'unsafe-inline'; script-src 'unsafe-inline'; img-src data:"
+
+
+def window(runs: int) -> int:
+    """Steps each of ``runs`` traces keeps in full on one page."""
+    return max(1, ROBOT_STEPS // max(1, runs))
+
+
+def inline_svg(svg: bytes) -> str:
+    """Graphviz' SVG as an element of the page: from ``<svg`` on, without comments or namespaces."""
+    text = svg.decode("utf-8")
+    text = _SVG_COMMENT.sub("", text[text.index("<svg"):])
+    return _SVG_NAMESPACES.sub("", text).strip()
+
+
+class _Numbering:
+    """Distinct values numbered in order of first appearance (vectors of states, fired tuples)."""
+
+    def __init__(self) -> None:
+        self.numbers: dict = {}
+
+    def __call__(self, value: tuple) -> int:
+        return self.numbers.setdefault(value, len(self.numbers))
+
+    def values(self) -> list:
+        return [list(v) for v in self.numbers]
+
+
+def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool) -> dict:
+    """Everything the page's script displays, as JSON-ready lists of integers and names."""
+    vectors, fired_sets = _Numbering(), _Numbering()
+    fired_sets(())
+    vectors(tuple(0 for _ in model.supervisors))
+    runs_data = []
+    for run in runs:
+        runs_data.append(dict(name=run.name, steps=run.steps, counts=run.counts, lastViolations=run.last_violations,
+                              last=vectors(run.last),
+                              v=[vectors(run.start)] + [vectors(s) for s in run.states],
+                              f=[0] + [fired_sets(f) for f in run.fired],
+                              x=[run.start_violations] + run.violations))
+    conjunction = Conjunction.of(model)
+    controllable = sum(1 << e for e, c in enumerate(model.controllable) if c)
+    vector_list = vectors.values()
+    difference = first_difference(runs[0], runs[1]) if compare else None
+    return dict(title=title, first=runs[0].first if runs else 1, window=window(len(runs)), robotSteps=ROBOT_STEPS,
+                events=[[name, "c" if c else "u", int(p)]
+                        for name, c, p in zip(model.events, model.controllable, model.public)],
+                supervisors=[len(sup.states) for sup in model.supervisors],
+                vectors=vector_list,
+                enabled=[list(events_of(conjunction.enabled(tuple(v)) & controllable)) for v in vector_list],
+                fired=fired_sets.values(), runs=runs_data, compare=compare, difference=difference)
+
+
+def asset(name: str) -> str:
+    """The page's script or style from the package data (tests check neither holds ``</``)."""
+    return TEMPLATES.joinpath("inspect", name).read_text(encoding="utf-8")
+
+
+def _drawings(model: Model, title: str) -> str:
+    figures = []
+    for sup in range(len(model.supervisors)):
+        svg = inline_svg(dot_to_svg(supervisor_dot(model, sup, "%s supervisor %d" % (title, sup)), model.source))
+        figures.append('<figure class="sup" data-sup="%d"><figcaption>supervisor %d <span class="where"></span>'
+                       '</figcaption>%s</figure>' % (sup, sup, svg))
+    return "\n".join(figures)
+
+
+def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool) -> bytes:
+    """The whole page, as UTF-8 bytes."""
+    head = ('<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+            '<meta http-equiv="Content-Security-Policy" content="%s">\n'
+            '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
+            '<title>%s: swarmvm inspect</title>\n<style>\n%s</style>\n</head>\n'
+            % (_CSP, html(title), asset("inspect.css")))
+    body = (BODY % dict(title=html(title), drawings=_drawings(model, title))
+            + '<script id="data" type="application/json">%s</script>\n<script>\n%s</script>\n</body>\n</html>\n'
+            % (script_json(page_data(model, title, runs, compare)), asset("inspect.js")))
+    return (head + body).encode("utf-8")
+
+
+# The page's fixed structure; inspect.js fills it in. Only ``title`` and ``drawings`` are
+# substituted, both escaped (html(), and Graphviz' own XML escaping of the DOT's labels).
+BODY = """<body>
+<header>
+<h1>%(title)s</h1>
+<p id="summary"></p>
+<ul class="legend">
+<li><span class="key controllable">controllable</span> solid edge: the VM chooses it</li>
+<li><span class="key uncontrollable">uncontrollable</span> dashed edge: an input (a check)</li>
+<li><span class="key public">public</span> bold edge: sent to the neighbours</li>
+<li><span class="key current">current state</span> of the robot shown (count: robots in that state)</li>
+<li><span class="key other">second run</span> when two runs are compared</li>
+</ul>
+</header>
+<nav id="controls">
+<button id="begin" title="first step (Home)">&#x00AB;</button>
+<button id="back" title="step back (Left)">&#x25C0;</button>
+<button id="play" title="play / pause (Space)">play</button>
+<button id="forward" title="step forward (Right)">&#x25B6;</button>
+<button id="end" title="last step (End)">&#x00BB;</button>
+<input id="slider" type="range" min="0" max="0" value="0" aria-label="step">
+<span id="stepLabel"></span>
+<label>speed <select id="speed"><option value="1">1</option><option value="4" selected>4</option>
+<option value="16">16</option><option value="64">64</option></select> steps/s</label>
+<label>event <select id="event"><option value="-1">(any)</option></select></label>
+<label><input id="filter" type="checkbox"> only its steps in the log</label>
+<button id="nextEvent" title="next occurrence of the event (e)">next event</button>
+<button id="nextViolation" title="next violation (v)">next violation</button>
+<button id="difference" title="first difference (d)" hidden>first difference</button>
+</nav>
+<details id="keys"><summary>Keyboard</summary>
+<table>
+<tr><td><kbd>&#x2190;</kbd> <kbd>&#x2192;</kbd></td><td>step back / forward (with <kbd>Shift</kbd>: 10 steps)</td></tr>
+<tr><td><kbd>Home</kbd> <kbd>End</kbd></td><td>first / last step</td></tr>
+<tr><td><kbd>Space</kbd></td><td>play / pause</td></tr>
+<tr><td><kbd>+</kbd> <kbd>-</kbd></td><td>faster / slower</td></tr>
+<tr><td><kbd>e</kbd> <kbd>E</kbd></td><td>next / previous step where the chosen event fired</td></tr>
+<tr><td><kbd>v</kbd> <kbd>V</kbd></td><td>next / previous violation</td></tr>
+<tr><td><kbd>d</kbd></td><td>first difference of the two runs compared</td></tr>
+<tr><td><kbd>&#x2191;</kbd> <kbd>&#x2193;</kbd></td><td>previous / next robot</td></tr>
+</table>
+</details>
+<section id="lanes"><h2>Robots</h2><canvas id="timeline" width="1000" height="40"></canvas><div id="laneNames"></div></section>
+<section id="now"><h2>At this step</h2><div id="panels"></div></section>
+<section id="drawings"><h2>Supervisors</h2>
+%(drawings)s
+</section>
+<section id="log"><h2>Trace</h2><table id="logTable"></table></section>
+<section id="runs"><h2>Whole runs</h2><table id="runTable"></table></section>
+"""
+
+
+@dataclass(frozen=True)
+class Inspection:
+    """What ``swarmvm inspect`` wrote: the page's path, and the robot-steps of the traces it
+    keeps in full and in all (fewer kept when over :data:`ROBOT_STEPS`)."""
+    path: str
+    kept: int
+    total: int
+
+
+def write_page(model: Model, title: str, traces: Sequence[str], output: str, compare: bool,
+               first_step: int) -> Inspection:
+    """Read every trace (InputError at the first bad line, before anything is written), then
+    write the page to ``output`` atomically."""
+    runs = [read_trace(path, model, first_step, window(len(traces))) for path in traces]
+    target = Path(output).absolute()
+    written = write_outputs(target.parent, {target.name: (page_html(model, title, runs, compare), False)})
+    return Inspection(written[0], sum(len(r.fired) for r in runs), sum(max(0, r.steps - r.first + 1) for r in runs))
