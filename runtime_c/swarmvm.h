@@ -95,10 +95,10 @@ extern "C" {
 #define SVM_WITH_LEARNED 1
 #endif
 
-/* The image format's own limits (docs/image-format.md): a build's SVM_MAX_* stay within them. */
-#define SVM_FORMAT_MAX_EVENTS 255u
-#define SVM_FORMAT_MAX_SUPERVISORS 255u
-#define SVM_FORMAT_MAX_STATES 65535u
+/* The image format's numbers (its limits SVM_FORMAT_MAX_*, which a build's SVM_MAX_* stay
+ * within, header offsets, flags, the Q15 one, the result codes), generated from
+ * runtime_py/swarmvm_format.py. */
+#include "swarmvm_format.h"
 
 #if SVM_MAX_EVENTS < 1 || SVM_MAX_EVENTS > SVM_FORMAT_MAX_EVENTS
 #error "SVM_MAX_EVENTS must be 1..255 (the image format's limit)"
@@ -133,46 +133,9 @@ typedef uint16_t svm_state_t;
 #define SVM_FLASH_BYTE(p) (*(const uint8_t *)(p))
 #endif
 
-/* ---- the table image format (docs/image-format.md) --------------------------------------
- * Defined once, in runtime_py/swarmvm_format.py; tests/image/test_format_constants.py checks
- * these against it. Generated tables refuse to compile against a runtime of another version. */
-#define SVM_FORMAT_VERSION 1u
-#define SVM_MAGIC 0x494D5653UL     /* "SVMI", as a little-endian u32 */
-#define SVM_HEADER_SIZE 16u
-#define SVM_CRC_SIZE 2u
-#define SVM_MIN_IMAGE_SIZE 18u      /* header and checksum */
-#define SVM_AT_MAGIC 0u             /* offsets of the header's fields */
-#define SVM_AT_VERSION 4u
-#define SVM_AT_FLAGS 5u
-#define SVM_AT_NUM_EVENTS 6u
-#define SVM_AT_NUM_SUPERVISORS 7u
-#define SVM_AT_NUM_STATES 8u        /* u16 */
-#define SVM_AT_NUM_TRANSITIONS 10u  /* u16 */
-#define SVM_AT_STATE_WIDTH 12u
-#define SVM_AT_MASK_BYTES 13u
-#define SVM_AT_LENGTH 14u           /* u16 L, the image's length, checksum included */
-#define SVM_FLAG_NAMES 0x01u        /* the names section is present */
-#define SVM_FLAG_PROBS 0x02u        /* the probability section is present */
-#define SVM_FLAG_ORDER 0x04u        /* the order section (source-file event indices) is present */
-#define SVM_FLAG_SOURCE 0x08u       /* the source section (the compatibility layers': skipped) is present */
-#define SVM_KNOWN_FLAGS 0x0Fu       /* an image with any other flag bit is refused */
-#define SVM_Q15_ONE 32768u          /* probability 1 in the probability section's Q15 */
-
-/* ---- result codes of svm_load and friends (0 = success) -------------------------------- */
-enum svm_result {
-    SVM_OK = 0,
-    SVM_ERR_LENGTH = 1,     /* shorter than SVM_MIN_IMAGE_SIZE or length field != given length */
-    SVM_ERR_MAGIC = 2,      /* not "SVMI" */
-    SVM_ERR_VERSION = 3,    /* format version this VM does not read */
-    SVM_ERR_CRC = 4,        /* checksum mismatch */
-    SVM_ERR_LAYOUT = 5,     /* header inconsistent, sections do not end at L-2, an index, mask bit
-                               or name character out of range */
-    SVM_ERR_LIMITS = 6,     /* more events/supervisors/states than this build's SVM_MAX_* */
-    SVM_ERR_NAMES = 7,      /* swap: a bound event's name is missing from the new image */
-    SVM_ERR_EVENT = 8,      /* unknown event index, or a check bound to a controllable event */
-    SVM_ERR_NO_BINDINGS = 9, /* svm_bind without a binding table (svm_set_bindings) */
-    SVM_ERR_SOURCE = 10     /* an image in memory this build does not read (SVM_IMAGE_SOURCES) */
-};
+/* The table image format (docs/image-format.md): swarmvm_format.h, included above, holds its
+ * numbers and the result codes of svm_load and friends (enum svm_result: SVM_OK, SVM_ERR_*).
+ * Generated tables refuse to compile against a runtime of another version. */
 
 /* Where an image lives (svm_validate's `source`). */
 #define SVM_SOURCE_RAM 0u
@@ -286,9 +249,8 @@ int svm_load_E(svm_vm_t *vm, const uint8_t *image, uint16_t length);
  * SVM_SOURCE_RAM, _FLASH or _EEPROM. */
 int svm_validate(const uint8_t *image, uint16_t length, uint8_t source);
 
-/* The image's checksum, CRC-16/MCRF4XX, one byte at a time: start from SVM_CRC16_INIT. Also
- * the checksum of the learned-parameter store (swarmvm_store.h). */
-#define SVM_CRC16_INIT 0xFFFFu
+/* The image's checksum, CRC-16/MCRF4XX, one byte at a time: start from SVM_CRC16_INIT
+ * (swarmvm_format.h). Also the checksum of the learned-parameter store (swarmvm_store.h). */
 uint16_t svm_crc16_update(uint16_t crc, uint8_t byte);
 
 /* Initial states, cleared check memory and violation counter, generator re-seeded. */

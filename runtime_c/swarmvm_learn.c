@@ -212,7 +212,7 @@ svl_real svl_classifier_bid_value(const svl_classifier_t *c, const svl_real *x)
 #define DIFF_LIMIT 0x7FFFUL
 #define EXP_CUTOFF (16UL << 16)
 #define LOG2E_Q14 23637UL
-#define Q15_ONE 32768L
+#define Q15_ONE ((int32_t)SVM_Q15_ONE)   /* swarmvm_format.h's, signed for the updates below */
 
 /* round(32768 * 2^(-j/16)), j = 0..16; in flash on AVR */
 #if defined(__AVR__)

@@ -17,12 +17,15 @@
 
 #include <stdint.h>
 
+#include "swarmvm_format.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define SVM_CHUNK_BYTES 9u
-#define SVM_CHUNK_DATA 8u
+/* A chunk: its sequence byte, then SVM_STREAM_CHUNK_DATA bytes of the image (swarmvm_format.h). */
+#define SVM_CHUNK_DATA SVM_STREAM_CHUNK_DATA
+#define SVM_CHUNK_BYTES (1u + SVM_CHUNK_DATA)
 
 enum svm_stream_status {
     SVM_STREAM_IDLE = 0,        /* waiting for chunk 0 */

@@ -1,5 +1,8 @@
 # Finding ARGoS 3 and building a swarmvm ARGoS controller, included by a generated project's
-# CMakeLists.txt (which the user owns and may extend: more sources, more libraries).
+# CMakeLists.txt (which the user owns and may extend: more sources, more libraries), and by an
+# OpenSwarm project switched to swarmvm's sct.h (`swarmvm compat-switch`, docs/compat.md), which
+# finds this file by asking the swarmvm program (`swarmvm cmake-dir` prints its folder; the
+# program on PATH, or -DSWARMVM_EXECUTABLE=), never a python3.
 #
 # ARGoS is found through its ARGoSConfig.cmake (share/argos3/cmake), looked for in this order at
 # ARGoS_DIR, ARGOS_PREFIX (cache or environment variable), CMAKE_PREFIX_PATH, the prefix of the
@@ -70,7 +73,7 @@ function(swarmvm_argos_controller target)
   target_link_libraries(${target} argos3core_simulator argos3plugin_simulator_epuck argos3plugin_simulator_genericrobot)
 endfunction()
 
-find_program(SWARMVM_EXECUTABLE swarmvm DOC "The swarmvm compiler (swarmvm_pack)")
+find_program(SWARMVM_EXECUTABLE swarmvm DOC "The swarmvm program (swarmvm cmake-dir, swarmvm_pack)")
 
 function(swarmvm_pack target)
   if(NOT SWARMVM_EXECUTABLE)

@@ -9,18 +9,32 @@ import argparse
 import os
 import sys
 import time
+from typing import TYPE_CHECKING, Callable, FrozenSet, Iterable, List, Optional, TypedDict, TypeVar
 
-import swarmvm_vm
+if TYPE_CHECKING:   # mypy reads the VM as the package's module; an app imports the copy beside it
+    from runtime_py import swarmvm_vm
+else:
+    import swarmvm_vm
 
 STDIN = "-"     # the script name that means standard input, as for ``swarmvm trace --script``
 
+# The facts the compiler's command line states too (swarmvm.cli): defined here, in the runtime a
+# robot carries without the compiler, and imported by the compiler (runtime_files.python_app).
+SEED_MAX = 0xFFFFFFFF   # the VM's generator (swarmvm_vm.XorShift32) takes a 32-bit seed: every --seed is 0..this
+# The policies a --policy option offers: every one but "learned", whose learner object no command
+# line can give.
+OPTION_POLICIES = tuple(policy for policy in swarmvm_vm.POLICIES if policy != "learned")
 
-def _in_range(convert, low, high, what):
+Row = FrozenSet[str]    # one step of an event script: the ``EV_`` names of the events that occur
+Number = TypeVar("Number", int, float)
+
+
+def _in_range(convert: Callable[[str], Number], low: Number, high: Number, what: str) -> Callable[[str], Number]:
     """An argparse type: text that ``convert`` reads as a number from ``low`` to ``high`` (nan
     and infinity never are); anything else is a usage error saying ``what`` was expected."""
-    def read(text):
+    def read(text: str) -> Number:
         try:
-            value = convert(text)
+            value: Optional[Number] = convert(text)
         except ValueError:
             value = None
         if value is None or not low <= value <= high:
@@ -31,10 +45,18 @@ def _in_range(convert, low, high, what):
 
 _steps = _in_range(int, 1, float("inf"), "a positive number of steps")
 _period = _in_range(float, 0.0, sys.float_info.max, "a number of seconds (0 or more)")
-_seed = _in_range(int, 0, 0xFFFFFFFF, "a seed (0 to 4294967295)")
+_seed = _in_range(int, 0, SEED_MAX, "a seed (0 to %d)" % SEED_MAX)
 
 
-def parser(description, script_help):
+class VMOptions(TypedDict):
+    """The keyword arguments of ``swarmvm_vm.VM`` an app's options decide."""
+    seed: int
+    inputs: str
+    control: str
+    policy: str
+
+
+def parser(description: str, script_help: str) -> argparse.ArgumentParser:
     """The options every app takes: --steps, --period, --seed, --inputs, --control, --policy,
     --script (``script_help`` says where its events go), --trace. An app adds its own."""
     options = argparse.ArgumentParser(description=description)
@@ -49,7 +71,7 @@ def parser(description, script_help):
     options.add_argument("--control", choices=swarmvm_vm.CONTROL_MODES, default="after-inputs",
                          help="choose a controllable event in every step, or only in a step without inputs "
                               "(default: after-inputs)")
-    options.add_argument("--policy", choices=("uniform", "first", "weighted"), default="uniform",
+    options.add_argument("--policy", choices=OPTION_POLICIES, default="uniform",
                          help="how the VM chooses among enabled controllable events (default: uniform)")
     options.add_argument("--script", metavar="FILE", help=script_help + " ('-': standard input)")
     options.add_argument("--trace", action="store_true",
@@ -57,12 +79,12 @@ def parser(description, script_help):
     return options
 
 
-def vm_options(args):
+def vm_options(args: argparse.Namespace) -> VMOptions:
     """The VM's options among parsed ``args``, as keyword arguments of ``swarmvm_vm.VM``."""
-    return dict(seed=args.seed, inputs=args.inputs, control=args.control, policy=args.policy)
+    return VMOptions(seed=args.seed, inputs=args.inputs, control=args.control, policy=args.policy)
 
 
-def read_script(path, events):
+def read_script(path: str, events: Iterable[str]) -> List[Row]:
     """Rows (sets of ``EV_`` names) of an event script (docs/conformance.md), ``-`` read from
     standard input; an unknown name or an unreadable file ends the app with one line."""
     try:
@@ -73,7 +95,7 @@ def read_script(path, events):
                 lines = handle.read().splitlines()
     except (OSError, UnicodeDecodeError) as exc:
         raise SystemExit("%s: cannot read the script (%s)" % (path, getattr(exc, "strerror", None) or exc))
-    rows = []
+    rows: List[Row] = []
     for number, line in enumerate(lines, 1):
         line = line.strip()
         if not line or line.startswith("#"):
@@ -90,24 +112,25 @@ class ScriptedEvents:
     """The uncontrollable events of an event script: those of row ``n`` occur at step ``n``,
     none after the script's end."""
 
-    def __init__(self, rows=()):
+    def __init__(self, rows: Iterable[Row] = ()) -> None:
         self._rows = list(rows)
-        self.row: frozenset = frozenset()
+        self.row: Row = frozenset()
 
-    def begin_step(self, number):
+    def begin_step(self, number: int) -> None:
         self.row = self._rows[number - 1] if number <= len(self._rows) else frozenset()
 
-    def occurred(self, name):
+    def occurred(self, name: str) -> bool:
         return name in self.row
 
-    def bind(self, vm):
+    def bind(self, vm: swarmvm_vm.VM) -> None:
         """Make the script decide every uncontrollable event of ``vm`` (their checks replaced;
         the actions stay)."""
         for event in vm.input_order:
             vm.bind(event, check=lambda _data, name=vm.image.event_name(event): name in self.row)
 
 
-def run(vm, period=0.1, steps=None, trace=False, begin_step=None):
+def run(vm: swarmvm_vm.VM, period: float = 0.1, steps: Optional[int] = None, trace: bool = False,
+        begin_step: Optional[Callable[[int], None]] = None) -> None:
     """Step the VM at a fixed rate, every ``period`` seconds (forever, or ``steps`` times),
     calling ``begin_step(n)`` before step ``n`` when given; Ctrl-C ends it with a line saying
     how many steps ran, not a traceback.

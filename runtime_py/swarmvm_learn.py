@@ -1,6 +1,7 @@
 """swarmvm learning: an online linear classifier for learned checks and a learned selection policy.
 
-Standard library only, like swarmvm_vm.py, so both files can be copied onto a robot together.
+Standard library only, like swarmvm_vm.py, so both files can be copied onto a robot together;
+the parameters' checksum is the image format's own (swarmvm_format.crc16, the file beside it).
 The C twin is runtime_c/swarmvm_learn.{h,c}; docs/learning.md specifies both.
 
 - :class:`LinearClassifier` is the drone-delivery bidding policy of the OpenSwarm study: features
@@ -18,6 +19,13 @@ The C twin is runtime_c/swarmvm_learn.{h,c}; docs/learning.md specifies both.
 
 import json
 import math
+import os
+from typing import TYPE_CHECKING, Iterable, List, Mapping, Optional, Protocol, Sequence, Set, Tuple, TypedDict, Union
+
+if TYPE_CHECKING:   # mypy reads the format as the package's module; a robot imports the copy beside it
+    from runtime_py.swarmvm_format import Image, crc16
+else:
+    from swarmvm_format import crc16
 
 __all__ = ["LinearClassifier", "LearnedPolicy", "PolicyError", "q16"]
 
@@ -29,8 +37,21 @@ __all__ = ["LinearClassifier", "LearnedPolicy", "PolicyError", "q16"]
 WSCALE_RESET = 1e-9      # scikit-learn rescales its weight vector when the scale drops below this
 MAX_DLOSS = 1e12         # and clips the loss gradient to +-this
 
+Features = Sequence[float]      # one sample, in the classifier's raw (unstandardised) units
+StrPath = Union[str, "os.PathLike[str]"]
 
-def _huber_loss(y, p):
+
+class ClassifierState(TypedDict):
+    """:meth:`LinearClassifier.to_dict`: everything a classifier needs to go on learning."""
+    mean: List[float]
+    scale: List[float]
+    alpha: float
+    weights: List[float]
+    intercept: float
+    t: float
+
+
+def _huber_loss(y: float, p: float) -> float:
     """Modified Huber loss for a label y in {-1, +1} and a decision value p."""
     z = p * y
     if z >= 1.0:
@@ -40,7 +61,7 @@ def _huber_loss(y, p):
     return -4.0 * z
 
 
-def _huber_gradient(y, p):
+def _huber_gradient(y: float, p: float) -> float:
     """d loss / d p of :func:`_huber_loss`."""
     z = p * y
     if z >= 1.0:
@@ -58,7 +79,7 @@ class LinearClassifier:
     ``1 / (alpha (t0 + t - 1))`` with ``t0 = 1 / (alpha * typw)``, ``typw = sqrt(1 / sqrt(alpha))``
     (Bottou's heuristic as scikit-learn applies it)."""
 
-    def __init__(self, mean, scale, alpha=0.01):
+    def __init__(self, mean: Features, scale: Features, alpha: float = 0.01) -> None:
         if len(mean) != len(scale) or not mean:
             raise ValueError("mean and scale must be non-empty and of equal length")
         if alpha <= 0:
@@ -74,34 +95,35 @@ class LinearClassifier:
         self.t0 = 1.0 / (typw / max(1.0, _huber_gradient(1.0, -typw)) * self.alpha)
 
     @property
-    def n_features(self):
+    def n_features(self) -> int:
         return len(self.mean)
 
-    def standardise(self, features):
+    def standardise(self, features: Features) -> List[float]:
         if len(features) != self.n_features:
             raise ValueError("expected %d features, got %d" % (self.n_features, len(features)))
         return [(float(x) - m) / s for x, m, s in zip(features, self.mean, self.scale)]
 
     # -- decisions ------------------------------------------------------------------------------
-    def decision_function(self, features):
+    def decision_function(self, features: Features) -> float:
         """f(x) on raw (unstandardised) features."""
         return self._dot(self.standardise(features), self.weights, 1.0) + self.intercept
 
-    def decide(self, features):
+    def decide(self, features: Features) -> bool:
         """The bidding decision: True iff f(x) >= 0."""
         return self.decision_function(features) >= 0.0
 
-    def norm(self):
+    def norm(self) -> float:
         """||w||, the intercept excluded."""
         return math.sqrt(sum(w * w for w in self.weights))
 
-    def bid_value(self, features):
+    def bid_value(self, features: Features) -> float:
         """f(x) / ||w||: the signed distance of x from the decision hyperplane (0 if w = 0)."""
         norm = self.norm()
         return self.decision_function(features) / norm if norm > 0.0 else 0.0
 
     # -- learning -------------------------------------------------------------------------------
-    def fit(self, samples, labels, max_iter=1000, tol=1e-3, n_iter_no_change=5):
+    def fit(self, samples: Iterable[Features], labels: Iterable[int], max_iter: int = 1000, tol: Optional[float] = 1e-3,
+            n_iter_no_change: int = 5) -> int:
         """Train from scratch as ``SGDClassifier.fit`` with ``shuffle=False`` does: epochs over the
         samples in order until the mean objective fails to improve by ``tol`` for
         ``n_iter_no_change`` epochs in a row (``tol=None`` runs all ``max_iter``). Returns the
@@ -115,25 +137,26 @@ class LinearClassifier:
         self.t += epochs * len(xs)
         return epochs
 
-    def partial_fit(self, features, label):
+    def partial_fit(self, features: Features, label: int) -> None:
         """One SGD update on one labelled sample (``SGDClassifier.partial_fit`` on one row)."""
         self._sgd([self.standardise(features)], [self._sign(label)], 1, None, 1)
         self.t += 1.0
 
     @staticmethod
-    def _sign(label):
+    def _sign(label: int) -> float:
         if label not in (0, 1, True, False):
             raise ValueError("labels are 1 (positive) or 0 (negative), got %r" % (label,))
         return 1.0 if label else -1.0
 
     @staticmethod
-    def _dot(x, v, wscale):
+    def _dot(x: Sequence[float], v: Sequence[float], wscale: float) -> float:
         total = 0.0
         for a, b in zip(v, x):
             total += a * b
         return total * wscale
 
-    def _sgd(self, xs, ys, max_iter, tol, n_iter_no_change):
+    def _sgd(self, xs: Sequence[Sequence[float]], ys: Sequence[float], max_iter: int, tol: Optional[float],
+             n_iter_no_change: int) -> int:
         """scikit-learn's plain SGD loop for this loss and penalty, dense data, no averaging.
 
         The weights are kept as ``wscale * v`` during the call (the L2 shrink only touches the
@@ -178,12 +201,12 @@ class LinearClassifier:
         return epoch
 
     # -- persistence ----------------------------------------------------------------------------
-    def to_dict(self):
-        return dict(mean=self.mean, scale=self.scale, alpha=self.alpha, weights=self.weights,
-                    intercept=self.intercept, t=self.t)
+    def to_dict(self) -> ClassifierState:
+        return ClassifierState(mean=self.mean, scale=self.scale, alpha=self.alpha, weights=self.weights,
+                               intercept=self.intercept, t=self.t)
 
     @classmethod
-    def from_dict(cls, data):
+    def from_dict(cls, data: ClassifierState) -> "LinearClassifier":
         model = cls(data["mean"], data["scale"], data["alpha"])
         model.weights = [float(w) for w in data["weights"]]
         model.intercept = float(data["intercept"])
@@ -213,22 +236,22 @@ class PolicyError(ValueError):
     """Parameters that do not fit this supervisor or fail their checksum."""
 
 
-def q16(value):
+def q16(value: float) -> int:
     """A real number as the Q16.16 integer the policy uses (round half away from zero)."""
     scaled = value * Q16_ONE
     return int(math.floor(scaled + 0.5)) if scaled >= 0 else -int(math.floor(-scaled + 0.5))
 
 
-def _floor_shift(value, bits):
+def _floor_shift(value: int, bits: int) -> int:
     """Arithmetic right shift (floor division by 2^bits); the C code spells it out portably."""
     return value >> bits
 
 
-def _clamp(value, limit):
+def _clamp(value: int, limit: int) -> int:
     return -limit if value < -limit else limit if value > limit else value
 
 
-def exp_neg_q15(x):
+def exp_neg_q15(x: int) -> int:
     """exp(-x) in Q15 for x >= 0 in Q16: 2^-(x log2 e) by table and linear interpolation."""
     if x >= EXP_CUTOFF:
         return 0
@@ -239,13 +262,23 @@ def exp_neg_q15(x):
     return value >> whole
 
 
-def crc16(data, crc=0xFFFF):
-    """CRC-16/MCRF4XX, the image checksum (swarmvm_vm.crc16), over saved parameters."""
-    for byte in data:
-        crc ^= byte
-        for _ in range(8):
-            crc = (crc >> 1) ^ 0x8408 if crc & 1 else crc >> 1
-    return crc
+# A choice waiting for its reward: the theta rows of the states it was made in, the ranks of the
+# enabled events, their probabilities in Q15, and the position of the one chosen.
+Choice = Tuple[List[int], List[int], List[int], int]
+
+
+class Generator(Protocol):
+    def next(self) -> int: ...
+
+
+class ChoosingVM(Protocol):
+    """What the policy reads of the VM that asks it to choose (swarmvm_vm.VM, the reference VM)."""
+
+    @property
+    def states(self) -> Sequence[int]: ...
+
+    @property
+    def rng(self) -> Generator: ...
 
 
 class LearnedPolicy:
@@ -260,7 +293,7 @@ class LearnedPolicy:
     ``inv_temp_q8`` is 1/temperature in Q8.8 (256 = temperature 1), ``rate_q16`` the learning
     rate in Q16 (below 1.0), ``baseline_shift`` the baseline's averaging rate 2^-shift."""
 
-    def __init__(self, image, inv_temp_q8=256, rate_q16=q16(0.1), baseline_shift=4):
+    def __init__(self, image: "Image", inv_temp_q8: int = 256, rate_q16: int = q16(0.1), baseline_shift: int = 4) -> None:
         if not 1 <= inv_temp_q8 <= 0xFFFF:
             raise ValueError("inv_temp_q8 must be in 1..65535")
         if not 0 <= rate_q16 <= 0xFFFF:
@@ -275,30 +308,31 @@ class LearnedPolicy:
         self.theta = [0] * (self.num_states * len(self.controllable))
         self.baseline = 0
         self.updates = 0
-        self.pending = None              # (rows, ranks, probabilities in Q15, chosen position)
+        self.pending: Optional[Choice] = None
 
     @classmethod
-    def with_temperature(cls, image, temperature=1.0, rate=0.1, baseline_shift=4):
+    def with_temperature(cls, image: "Image", temperature: float = 1.0, rate: float = 0.1,
+                         baseline_shift: int = 4) -> "LearnedPolicy":
         """Convenience: real temperature and rate, converted once to the integer options."""
         beta = max(1, min(0xFFFF, int(math.floor(256.0 / temperature + 0.5))))
         return cls(image, beta, max(0, min(0xFFFF, q16(rate))), baseline_shift)
 
     # -- choosing -------------------------------------------------------------------------------
-    def _rows(self, states):
+    def _rows(self, states: Sequence[int]) -> List[int]:
         width = len(self.controllable)
         return [(self.sup_first[s] + state) * width for s, state in enumerate(states)]
 
-    def preferences(self, states, enabled):
+    def preferences(self, states: Sequence[int], enabled: Sequence[int]) -> List[int]:
         rows = self._rows(states)
         return [sum(self.theta[row + self.rank[e]] for row in rows) for e in enabled]
 
-    def weights(self, states, enabled):
+    def weights(self, states: Sequence[int], enabled: Sequence[int]) -> List[int]:
         """Unnormalised Q15 weights of the enabled events (the best one weighs 32768)."""
         prefs = self.preferences(states, enabled)
         top = max(prefs)
         return [exp_neg_q15(min((top - h) >> 8, DIFF_LIMIT) * self.inv_temp_q8) for h in prefs]
 
-    def choose(self, vm, enabled):
+    def choose(self, vm: ChoosingVM, enabled: Sequence[int]) -> int:
         """The VM's hook for policy ``learned``: draw an enabled event, remember the choice."""
         if len(enabled) == 1:
             self.pending = None
@@ -315,7 +349,7 @@ class LearnedPolicy:
         return enabled[position]
 
     # -- learning -------------------------------------------------------------------------------
-    def reward(self, value):
+    def reward(self, value: int) -> bool:
         """Credit the last choice with an integer reward in Q16 (use :func:`q16` for reals).
 
         Without a pending choice (none made since the last reward, or it had no alternative)
@@ -340,7 +374,7 @@ class LearnedPolicy:
         return True
 
     # -- persistence ----------------------------------------------------------------------------
-    def to_words(self):
+    def to_words(self) -> List[int]:
         """The flat array the C runtime loads: header, baseline, theta, then a CRC word."""
         words = [POLICY_MAGIC, POLICY_VERSION, len(self.theta), self.inv_temp_q8, self.rate_q16,
                  self.baseline_shift, self.baseline & 0xFFFFFFFF, self.updates]
@@ -348,9 +382,9 @@ class LearnedPolicy:
         words.append(crc16(b"".join(w.to_bytes(4, "little") for w in words)))
         return words
 
-    def from_words(self, words):
+    def from_words(self, saved: Iterable[int]) -> None:
         """Load :meth:`to_words` output (from Python or C); PolicyError if it does not fit."""
-        words = [int(w) & 0xFFFFFFFF for w in words]
+        words = [int(w) & 0xFFFFFFFF for w in saved]
         if len(words) < 9 or words[0] != POLICY_MAGIC or words[1] != POLICY_VERSION:
             raise PolicyError("not a swarmvm learned-policy parameter array")
         if words[2] != len(self.theta) or len(words) != 9 + words[2]:
@@ -363,11 +397,11 @@ class LearnedPolicy:
         self.theta = signed[8:-1]
         self.pending = None
 
-    def save(self, path):
+    def save(self, path: StrPath) -> None:
         with open(path, "w") as handle:
             json.dump(dict(format="swarmvm-learned-policy", words=self.to_words()), handle)
 
-    def load(self, path):
+    def load(self, path: StrPath) -> None:
         with open(path) as handle:
             data = json.load(handle)
         if data.get("format") != "swarmvm-learned-policy":
@@ -379,18 +413,18 @@ class LearnedCheck:
     """One learned pair of uncontrollable events (docs/learning.md): a pending question, its
     cached answer and the features of the last "yes"."""
 
-    def __init__(self, classifier):
+    def __init__(self, classifier: LinearClassifier) -> None:
         self.classifier = classifier
-        self.pending = None
-        self.answer = None
-        self.polled = set()
-        self.last_yes = None
+        self.pending: Optional[List[float]] = None     # the question's features, until both events polled
+        self.answer: Optional[bool] = None
+        self.polled: Set[bool] = set()                 # which of yes (True) and no (False) asked it
+        self.last_yes: Optional[List[float]] = None
         self.decisions = 0
 
-    def offer(self, features):
+    def offer(self, features: Features) -> None:
         self.pending, self.answer, self.polled = list(features), None, set()
 
-    def poll(self, yes):
+    def poll(self, yes: bool) -> bool:
         """The check of the yes (``yes=True``) or no event: both are polled in one step, both
         see the same answer, and the question is consumed once both have been asked."""
         if self.pending is None:
@@ -406,12 +440,12 @@ class LearnedCheck:
             self.pending = None
         return result
 
-    def report_outcome(self, success, features=None):
+    def report_outcome(self, success: bool, features: Optional[Features] = None) -> None:
         """One online update: label 1 on success, 0 on failure."""
-        features = self.last_yes if features is None else features
-        if features is None:
+        learned = self.last_yes if features is None else features
+        if learned is None:
             raise ValueError("no decided features to learn from: pass features=")
-        self.classifier.partial_fit(features, 1 if success else 0)
+        self.classifier.partial_fit(learned, 1 if success else 0)
 
 
 class LearnedChecks:
@@ -419,18 +453,19 @@ class LearnedChecks:
     subclass adds one ``check_<event>`` per event, bound to the VM like any other check.
     ``classifiers`` maps each pair's yes event to its classifier."""
 
-    pairs: tuple = ()
+    pairs: Tuple[Tuple[str, str], ...] = ()
 
-    def __init__(self, classifiers):
-        missing = [yes for yes, _ in self.pairs if yes not in (classifiers or {})]
+    def __init__(self, classifiers: Optional[Mapping[str, LinearClassifier]]) -> None:
+        given = classifiers or {}
+        missing = [yes for yes, _ in self.pairs if yes not in given]
         if missing:
             example = ", ".join("%r: swarmvm_learn.LinearClassifier(mean, scale, alpha)" % yes for yes in missing)
             raise ValueError("learned checks need a classifier each: classifiers={" + example + "}")
-        self.learned = {yes: LearnedCheck(classifiers[yes]) for yes, _ in self.pairs}
+        self.learned = {yes: LearnedCheck(given[yes]) for yes, _ in self.pairs}
 
-    def offer(self, yes_event, features):
+    def offer(self, yes_event: str, features: Features) -> None:
         """Pose the question of a pair (features in the classifier's raw units)."""
         self.learned[yes_event].offer(features)
 
-    def report_outcome(self, yes_event, success, features=None):
+    def report_outcome(self, yes_event: str, success: bool, features: Optional[Features] = None) -> None:
         self.learned[yes_event].report_outcome(success, features)

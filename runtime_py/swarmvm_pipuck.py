@@ -8,9 +8,15 @@ Pi-puck and on a laptop (``--sim``): ``begin_step``, ``event_occurred``, ``recei
 
 import json
 import socket
+from typing import TYPE_CHECKING, Callable, Iterable, Optional, Protocol, Set
 
-import swarmvm_app
-from swarmvm_format import MAX_NAME_LENGTH
+if TYPE_CHECKING:   # mypy reads the runtime as the package's modules; a robot imports the copies beside this one
+    from runtime_py import swarmvm_app
+    from runtime_py.swarmvm_format import MAX_NAME_LENGTH
+    from runtime_py.swarmvm_vm import VM
+else:
+    import swarmvm_app
+    from swarmvm_format import MAX_NAME_LENGTH
 
 # Public events travel as UDP broadcasts of the message name on the robots' Wi-Fi network.
 MESSAGE_PORT = 47474
@@ -19,7 +25,20 @@ MESSAGE_PORT = 47474
 MAX_DATAGRAM = len(json.dumps({"message": "x" * MAX_NAME_LENGTH}).encode("utf-8"))
 
 
-def message_in(datagram):
+class Robot(Protocol):
+    """The few methods a controller talks to the robot through: :class:`PiPuckRobot` and
+    :class:`SimRobot` both have them."""
+
+    def begin_step(self, number: int) -> None: ...
+    def event_occurred(self, event: str) -> bool: ...
+    def received(self, message: str) -> bool: ...
+    def set_motors(self, left: float, right: float) -> None: ...
+    def set_leds(self, colour: str) -> None: ...
+    def broadcast(self, message: str) -> None: ...
+    def stop(self) -> None: ...
+
+
+def message_in(datagram: bytes) -> Optional[str]:
     """The message name a datagram carries, or None for one that is not a robot's broadcast
     (another program on the port, a damaged or cut datagram): what the network brings must not
     stop the control loop."""
@@ -37,7 +56,7 @@ class PiPuckRobot:
     anywhere but on the robot: importing it here, not at module level, keeps the controller
     importable (and testable) on any machine."""
 
-    def __init__(self, epuck_version=2):
+    def __init__(self, epuck_version: int = 2) -> None:
         try:
             from pipuck.pipuck import PiPuck
         except ImportError as exc:
@@ -49,9 +68,9 @@ class PiPuckRobot:
         self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         self._socket.bind(("", MESSAGE_PORT))
         self._socket.setblocking(False)
-        self._heard = set()
+        self._heard: Set[str] = set()
 
-    def begin_step(self, number):
+    def begin_step(self, number: int) -> None:
         """Collect the messages that arrived since the previous step (message_in)."""
         self._heard = set()
         while True:
@@ -63,26 +82,26 @@ class PiPuckRobot:
             if message is not None:
                 self._heard.add(message)
 
-    def event_occurred(self, event):
+    def event_occurred(self, event: str) -> bool:
         """Placeholder for a sensor reading: the controller's checks replace it."""
         return False
 
-    def received(self, message):
+    def received(self, message: str) -> bool:
         return message in self._heard
 
-    def set_motors(self, left, right):
+    def set_motors(self, left: float, right: float) -> None:
         """Wheel speeds in e-puck steps/s (-1000..1000)."""
         self._pipuck.epuck.set_motor_speeds(int(left), int(right))
 
-    def set_leds(self, colour):
+    def set_leds(self, colour: str) -> None:
         """All three Pi-puck RGB LEDs: off, red, green, yellow, blue, magenta, cyan or white."""
         self._pipuck.set_leds_colour(colour)
 
-    def broadcast(self, message):
+    def broadcast(self, message: str) -> None:
         payload = json.dumps({"message": message}).encode("utf-8")
         self._socket.sendto(payload, ("<broadcast>", MESSAGE_PORT))
 
-    def stop(self):
+    def stop(self) -> None:
         self.set_motors(0, 0)
         self.set_leds("off")
 
@@ -95,34 +114,34 @@ class SimRobot:
     ``n`` lists the events whose checks return true at step ``n``; without a script they never
     occur."""
 
-    def __init__(self, rows=(), log=print):
+    def __init__(self, rows: Iterable[swarmvm_app.Row] = (), log: Callable[[str], None] = print) -> None:
         self._script = swarmvm_app.ScriptedEvents(rows)
         self._log = log
 
-    def begin_step(self, number):
+    def begin_step(self, number: int) -> None:
         self._script.begin_step(number)
 
-    def event_occurred(self, event):
+    def event_occurred(self, event: str) -> bool:
         return self._script.occurred(event)
 
-    def received(self, message):
+    def received(self, message: str) -> bool:
         return self._script.occurred("EV__" + message)
 
-    def set_motors(self, left, right):
+    def set_motors(self, left: float, right: float) -> None:
         self._log("sim motors %d %d" % (left, right))
 
-    def set_leds(self, colour):
+    def set_leds(self, colour: str) -> None:
         self._log("sim leds %s" % colour)
 
-    def broadcast(self, message):
+    def broadcast(self, message: str) -> None:
         self._log("sim broadcast %s" % message)
 
-    def stop(self):
+    def stop(self) -> None:
         self.set_motors(0, 0)
         self.set_leds("off")
 
 
-def run(vm, robot, period=0.1, steps=None, trace=False):
+def run(vm: "VM", robot: Robot, period: float = 0.1, steps: Optional[int] = None, trace: bool = False) -> None:
     """Step the VM at a fixed rate (swarmvm_app.run), the robot's ``begin_step`` before each
     step; the robot is stopped when the loop ends, however it ends."""
     try:

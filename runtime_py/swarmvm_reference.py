@@ -15,10 +15,18 @@ Python target ships swarmvm_vm.py): it is several times slower, and meant to be 
 Like the other runtime files it imports its neighbours by their top-level names.
 """
 
+from __future__ import annotations
+
 __all__ = ["ReferenceVM"]
 
-from swarmvm_format import Q15_ONE, Image
-from swarmvm_vm import MAX_VIOLATIONS, Bindings, CallbackError, XorShift32, check_options
+from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence, Union, cast
+
+if TYPE_CHECKING:   # mypy reads its neighbours as the package's modules; the VM imports the copies beside it
+    from runtime_py.swarmvm_format import Q15_ONE, Image
+    from runtime_py.swarmvm_vm import MAX_VIOLATIONS, Bindings, CallbackError, Learner, XorShift32, check_options
+else:
+    from swarmvm_format import Q15_ONE, Image
+    from swarmvm_vm import MAX_VIOLATIONS, Bindings, CallbackError, XorShift32, check_options
 
 
 class ReferenceVM(Bindings):
@@ -31,10 +39,16 @@ class ReferenceVM(Bindings):
     list of fired events, ``enabled()``, ``load()``, ``reset()``; options may be changed
     between steps by assigning them."""
 
-    previous: set   # the events whose check was true at the previous step (reset)
+    previous: set[int]      # the events whose check was true at the previous step (reset)
+    states: list[int]
+    violations: int
+    rng: XorShift32
+    input_order: list[int]
 
-    def __init__(self, image, inputs="level", control="after-inputs", policy="uniform", seed=1,
-                 priority=None, learner=None, on_violation=None, strict=False):
+    def __init__(self, image: Union[Image, bytes], inputs: str = "level", control: str = "after-inputs",
+                 policy: str = "uniform", seed: int = 1, priority: Optional[Sequence[Union[int, str]]] = None,
+                 learner: Optional[Learner] = None, on_violation: Optional[Callable[[int, int], Any]] = None,
+                 strict: bool = False) -> None:
         check_options(inputs, control, policy, learner)
         self.inputs, self.control, self.policy, self.strict = inputs, control, policy, strict
         self.seed, self.priority, self.learner, self.on_violation = seed, priority, learner, on_violation
@@ -45,7 +59,7 @@ class ReferenceVM(Bindings):
         self.reset()
 
     # -- Model ------------------------------------------------------------------------------------
-    def _use(self, image):
+    def _use(self, image: Image) -> None:
         """Run ``image`` from now on. The *input order* ("One step", 1. Poll): the public
         uncontrollable events, then the private ones, each group in event order."""
         self.image = image
@@ -55,16 +69,16 @@ class ReferenceVM(Bindings):
                             + [e for e in uncontrollable if not self._public(e)])
         self._first = [self._index(name) for name in self.priority or ()]     # policy first's listed events
 
-    def _controllable(self, event):
+    def _controllable(self, event: int) -> bool:
         return bool(self.image.controllable >> event & 1)
 
-    def _public(self, event):
+    def _public(self, event: int) -> bool:
         return bool(self.image.public >> event & 1)
 
-    def _in_alphabet(self, sup, event):
+    def _in_alphabet(self, sup: int, event: int) -> bool:
         return bool(self.image.sup_alphabet[sup] >> event & 1)
 
-    def _transition(self, sup, event):
+    def _transition(self, sup: int, event: int) -> Optional[int]:
         """Where supervisor ``sup``'s transition on ``event`` from its current state is kept in
         the image (its index in ``targets`` and ``probs``), or None if it has none. The
         successors of a state follow each other in event order, from its ``state_first``."""
@@ -77,7 +91,7 @@ class ReferenceVM(Bindings):
         return image.state_first[state] + bin(earlier).count("1")
 
     # -- One step -------------------------------------------------------------------------------
-    def step(self):
+    def step(self) -> list[int]:
         """One step ("One step", 1 to 6); returns the events that fired, in the order they were
         applied. In strict mode it refuses to step while a check is missing ("Callbacks")."""
         if self.strict:
@@ -88,14 +102,14 @@ class ReferenceVM(Bindings):
         fired = self._apply_inputs(occurred, loads)     # 3
         if self._loads != loads or not self._control_continues(fired):      # 4
             return fired
-        enabled = self.enabled()                        # 5
+        enabled = self._enabled_set()                   # 5
         if enabled:                                     # 6
-            choice = self._select(enabled)
+            choice = self._select_event(enabled)
             self._fire(choice)
             fired.append(choice)
         return fired
 
-    def _poll(self):
+    def _poll(self) -> list[int]:
         """1. Poll: the uncontrollable events whose check returns true, each check called once,
         in input order. An event without a check never occurs. A check that raises ends the
         step before anything changed ("Callbacks that raise")."""
@@ -111,7 +125,7 @@ class ReferenceVM(Bindings):
                 raise CallbackError(self.image.event_name(event), "check", exc) from exc
         return true
 
-    def _occurrence(self, polled):
+    def _occurrence(self, polled: list[int]) -> list[int]:
         """2. Occurrence: with level inputs, every event whose check was true; with edge inputs,
         those whose check was not true at the previous step (remembered in ``previous``)."""
         if self.inputs == "level":
@@ -121,7 +135,7 @@ class ReferenceVM(Bindings):
         self.previous = set(polled)
         return occurred
 
-    def _apply_inputs(self, occurred, loads):
+    def _apply_inputs(self, occurred: list[int], loads: int) -> list[int]:
         """3. Apply inputs: each occurring event in input order, moves then action (_fire). An
         action that loads an image ends the step after its own event ("Reset and swap")."""
         fired = []
@@ -132,11 +146,15 @@ class ReferenceVM(Bindings):
                 break
         return fired
 
-    def _control_continues(self, fired):
+    def _control_continues(self, fired: list[int]) -> bool:
         """4. Control phase: with ``if-quiet`` the step ends when an input occurred."""
         return self.control == "after-inputs" or not fired
 
-    def enabled(self):
+    def enabled(self) -> list[int]:
+        """The enabled set as the fast VM shows it (its ``enabled()``): step 5's events."""
+        return self._enabled_set()
+
+    def _enabled_set(self) -> list[int]:
         """5. Enabled set: the controllable events, in event order, that every supervisor either
         does not have in its alphabet or has a transition on from its current state."""
         return [event for event in range(self.num_events)
@@ -144,13 +162,13 @@ class ReferenceVM(Bindings):
                 and all(not self._in_alphabet(sup, event) or self._transition(sup, event) is not None
                         for sup in range(self.image.num_supervisors))]
 
-    def _select(self, enabled):
+    def _select_event(self, enabled: list[int]) -> int:
         """6. Selection: one of the (non-empty) enabled events, by the policy ("Selection
         policies")."""
         if self.policy == "first":
             return min(enabled, key=self._rank)
         if self.policy == "learned":
-            return self.learner.choose(self, enabled)
+            return cast("Learner", self.learner).choose(self, enabled)   # (check_options: given with the policy)
         if len(enabled) == 1:
             return enabled[0]
         if self.policy == "uniform":
@@ -158,7 +176,7 @@ class ReferenceVM(Bindings):
         return self._weighted(enabled)
 
     # -- applying an event (steps 3 and 6) --------------------------------------------------------
-    def _fire(self, event):
+    def _fire(self, event: int) -> None:
         """Every supervisor whose alphabet holds ``event`` moves along its transition; one with
         none keeps its state and counts a violation (_violate); then the event's action runs."""
         for sup in range(self.image.num_supervisors):
@@ -170,7 +188,7 @@ class ReferenceVM(Bindings):
                     self.states[sup] = self.image.targets[at]
         self._act(event)
 
-    def _violate(self, event, sup):
+    def _violate(self, event: int, sup: int) -> None:
         """The violation counter grows by one, stopping at its 32-bit maximum, and the
         ``on_violation(event, sup)`` hook is told; a hook that raises ends the step there
         ("Callbacks that raise"), and may not load an image ("Reset and swap")."""
@@ -186,7 +204,7 @@ class ReferenceVM(Bindings):
         finally:
             self._in_hook = False
 
-    def _act(self, event):
+    def _act(self, event: int) -> None:
         """The event's action, if bound, with its data; one that raises ends the step after its
         event's moves, which stay applied ("Callbacks that raise")."""
         action = self.actions.get(event)
@@ -198,28 +216,29 @@ class ReferenceVM(Bindings):
             raise CallbackError(self.image.event_name(event), "action", exc) from exc
 
     # -- Selection policies -------------------------------------------------------------------
-    def _rank(self, event):
+    def _rank(self, event: int) -> int:
         """Policy ``first``: the events listed in ``priority`` first, in its order (named when
         the image is taken: _use), then the others in event order."""
         listed = self._first
         return listed.index(event) if event in listed else len(listed) + event
 
-    def _uniform(self, enabled):
+    def _uniform(self, enabled: list[int]) -> int:
         """Policy ``uniform`` with two or more events: ``en[((next() >> 16) * n) >> 16]``."""
         return enabled[self.rng.below(len(enabled))]
 
-    def _weight(self, event):
+    def _weight(self, event: int) -> int:
         """The event's Q15 weight: 1.0 times, for each supervisor whose alphabet holds it in
         supervisor order, the probability of its transition from the current state (1.0 in an
         image without probabilities), each product shifted back to Q15."""
         weight = Q15_ONE
         for sup in range(self.image.num_supervisors):
-            if self._in_alphabet(sup, event):
-                probability = Q15_ONE if self.image.probs is None else self.image.probs[self._transition(sup, event)]
+            at = self._transition(sup, event) if self._in_alphabet(sup, event) else None
+            if at is not None:      # (an enabled event's: every supervisor that has it has the move)
+                probability = Q15_ONE if self.image.probs is None else self.image.probs[at]
                 weight = (weight * probability) >> 15
         return weight
 
-    def _weighted(self, enabled):
+    def _weighted(self, enabled: list[int]) -> int:
         """Policy ``weighted`` with two or more events: as ``uniform`` when every weight is 0,
         else the event where ``next() mod total`` falls among the weights, in event order."""
         weights = [self._weight(event) for event in enabled]
@@ -234,7 +253,7 @@ class ReferenceVM(Bindings):
         raise AssertionError("unreachable: pick is below the total of the weights")
 
     # -- Reset and swap -----------------------------------------------------------------------
-    def reset(self):
+    def reset(self) -> None:
         """Every supervisor back to its initial state, the remembered check values and the
         violation counter cleared, the generator ("The pseudo-random generator") re-seeded."""
         self.states = list(self.image.sup_initial)
@@ -243,7 +262,7 @@ class ReferenceVM(Bindings):
         self.rng = XorShift32(self.seed)
         self._bindings_checked = False
 
-    def load(self, image):
+    def load(self, image: Union[Image, bytes]) -> list[str]:
         """Swap in a new image: callbacks bound by name are rebound by name (a name the new image
         lacks is refused, the VM keeping its logic), then a reset. Returns the new image's
         uncontrollable events left without a check (in strict mode the image is refused). An

@@ -7,9 +7,9 @@ like the other runtimes (C, C++), it is checked trace for trace against the plai
 (swarmvm_reference.py, written to be read beside that page; robots need not have it). The
 tables come from a table image (docs/image-format.md), either compiled into a generated module
 as a bytes literal or read from a ``.svm`` file: both go through :meth:`Image.parse`, so
-"compiled in" and "loaded" are one code path. For speed, a VM writes its step out for its bindings and options
-(VM._bound, _stepper) and compiles it once; docs/api.md says what else the step and the load
-do ahead of time, and what they gained.
+"compiled in" and "loaded" are one code path. For speed, a VM writes its step out for its
+bindings and options (VM._bound, by swarmvm_step_source.py, copied beside it) and compiles it
+once; docs/api.md says what else the step and the load do ahead of time, and what they gained.
 """
 
 from __future__ import annotations
@@ -19,17 +19,18 @@ __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEve
 
 import functools
 import hashlib
-import linecache
 import operator
 import os
 import random
 import types
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Optional, Protocol, Sequence, Tuple, Union, cast
 
-if TYPE_CHECKING:   # mypy reads the format as the package's module; the VM imports the copy beside it
+if TYPE_CHECKING:   # mypy reads the format and the step writer as the package's modules; the VM imports the copies beside it
     from runtime_py.swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+    from runtime_py.swarmvm_step_source import canonical_step, exact_step
 else:
     from swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+    from swarmvm_step_source import canonical_step, exact_step
 
 INPUT_MODES = ("level", "edge")
 CONTROL_MODES = ("after-inputs", "if-quiet")
@@ -47,9 +48,10 @@ Gate = Tuple[int, list[int]]                    # (supervisor, the controllable 
 
 
 class Learner(Protocol):
-    """What policy ``learned`` asks (swarmvm_learn.py): one of ``enabled``, chosen for ``vm``."""
+    """What policy ``learned`` asks (swarmvm_learn.py): one of ``enabled``, chosen for ``vm``,
+    the VM or the reference VM (swarmvm_reference.ReferenceVM), which show the same state."""
 
-    def choose(self, vm: VM, enabled: Sequence[int]) -> int: ...
+    def choose(self, vm: Bindings, enabled: Sequence[int]) -> int: ...
 
 
 def callback_stem(name: str) -> str:
@@ -112,288 +114,6 @@ def _bits(mask: int) -> list[int]:
         out.append(low.bit_length() - 1)
         mask ^= low
     return out
-
-
-def _check_args(count: int) -> str:
-    """The parameters of a written-out poll: each check and its data as a default argument."""
-    return "".join(", c%d=checks[%d], d%d=datas[%d]" % (i, i, i, i) for i in range(count))
-
-
-def _poll_lines(events: Sequence[int], wrap: bool) -> list[str]:
-    """Source lines that make ``fired``: each check ``c<i>`` called with its data ``d<i>`` once,
-    in order, and the event of each check that is true added; ``wrap``: a check that raises
-    raises CallbackError naming its event (``event_name``), else the exception as it is.
-    Written out check by check because a loop over the checks cost a sixth of a step on models
-    with many inputs; a single check makes its list in one expression. ``fired.append`` is
-    called as a method, not through a bound ``add``: CPython 3.11 and later run a list's append
-    called so without a call frame, at half the cost."""
-    if len(events) == 1:
-        body = ["e = %d" % events[0]] if wrap else []
-        body += ["fired = [%d] if c0(d0) else []" % events[0]]
-    else:
-        body = ["fired = []"]
-        body += [line for i, event in enumerate(events)
-                 for line in (["e = %d" % event] if wrap else []) + ["if c%d(d%d):" % (i, i),
-                                                                     "    fired.append(%d)" % event]]
-    if not wrap:
-        return body
-    return (["e = -1", "try:"] + ["    " + line for line in body]
-            + ["except Exception as exc:", "    raise CallbackError(event_name(e), 'check', exc) from exc"])
-
-
-def _compiled(key: Tuple[object, ...], parameters: Sequence[str], lines: list[str]) -> types.FunctionType:
-    """The function ``make(*parameters)`` whose body is the source ``lines``, compiled once per
-    ``key`` (the code depends on the events and options alone, not on the callbacks):
-    _COMPILED. The caller passes the parameters by name (``make(**parts)``), so the names are
-    written once, in its own code. The source is compiled under a file name of its own
-    (``<swarmvm canonical step ...>``, ``<swarmvm exact step ...>``: the kind, ``key[0]``, and
-    a digest of the text) whose lines ``linecache`` holds, so that a traceback through a
-    written-out step shows the lines it ran."""
-    make = _COMPILED.get(key)
-    if make is None:
-        source = "".join(line + "\n" for line in ["def make(%s):" % ", ".join(parameters)]
-                         + ["    " + line for line in lines])
-        filename = "<swarmvm %s step %s>" % (key[0], hashlib.sha256(source.encode()).hexdigest()[:12])
-        namespace: dict[str, Any] = {}
-        exec(compile(source, filename, "exec"), namespace)
-        if len(_COMPILED) >= MAX_COMPILED:
-            for old in _COMPILED.values():
-                linecache.cache.pop(old.__code__.co_filename, None)
-            _COMPILED.clear()
-        linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-        make = _COMPILED[key] = namespace["make"]
-    return make
-
-
-_COMPILED: dict[Tuple[object, ...], types.FunctionType] = {}    # key -> the compiled maker of a written-out step
-MAX_COMPILED = 64
-
-
-def _move_lines(sole: bool, total: bool, cut: list[str]) -> list[str]:
-    """Source lines that fire the inputs in ``fired``: each supervisor that has the event moves
-    (``total``: no input can violate, so no check for a missing move), then its action runs.
-    ``sole``: the image has one supervisor, whose state is ``states[0]`` and whose column of
-    each event is ``columns[event]`` (None outside its alphabet). An action that loads an image
-    (``vm._loads`` is no longer the plan's ``loads``) ends the step with the lines ``cut``: what
-    fired up to its event stands, nothing else fires (docs/semantics.md, "Reset and swap")."""
-    cut = ["if vm._loads != loads:"] + ["    " + line for line in cut]
-    if sole:
-        body = ["    for event in fired:",
-                "        column = columns[event]",
-                "        if column is not None:",
-                "            target = column[states[0]]"]
-        indent, sup = "            ", "0"
-    else:
-        body = ["    for event in fired:",
-                "        for sup, column in successors[event]:",
-                "            target = column[states[sup]]"]
-        indent, sup = "            ", "sup"
-    if total:
-        body += [indent + "states[%s] = target" % sup]
-    else:
-        body += [indent + "if target is None:",
-                 indent + "    vm._violate(event, %s)" % sup,
-                 indent + "    states, a = vm.states, (vm._plan or vm._bound())[0]",
-                 indent + "else:",
-                 indent + "    states[%s] = target" % sup]
-    return body + ["        if a[event] is not None:",
-                   "            vm._act(event, a[event])"] + ["            " + line for line in cut] + [
-                   "            states, a = vm.states, (vm._plan or vm._bound())[0]"]
-
-
-def _mask_line(gate_sups: Sequence[int]) -> str:
-    """The source line that makes ``mask``, the controllable events every supervisor allows in
-    its state: an AND over the gates (``g<i>``, the masks by state of supervisor
-    ``gate_sups[i]``) written out, no loop (VM._enabled_mask is the same, out of line)."""
-    return "mask = controllable" + "".join(" & g%d[states[%d]]" % (i, sup) for i, sup in enumerate(gate_sups))
-
-
-def _gate_lines(gate_sups: Sequence[int]) -> list[str]:
-    """The lines of ``make`` that name each gate's masks ``g<i>`` for _mask_line."""
-    return ["g%d = gates[%d][1]" % (i, i) for i in range(len(gate_sups))]
-
-
-def _choice_lines(uniform: bool, sole: bool, gate_sups: Sequence[int]) -> list[str]:
-    """Source lines that fire one of the enabled controllable events: the uniform policy's draw
-    (XorShift32.next, the generator's one definition, called; its number scaled to an index as
-    XorShift32.below does, whose call would cost the step a second frame) or the VM's
-    ``select``, then the event's move, from the remembered states after it (``afters``: one supervisor's state when ``sole``, else every
-    supervisor's, or None when not remembered), and its action."""
-    if sole:
-        body = ["entry = table[states[0]]",
-                "enabled, afters = entry or vm._sole_entry()"]
-    else:
-        body = [_mask_line(gate_sups),
-                "enabled = sets.get(mask)",
-                "if enabled is None:",
-                "    enabled = vm._enabled_set(mask)"]
-    body += ["if enabled:"]
-    if uniform:
-        body += ["    n = len(enabled)",
-                 "    k = 0 if n == 1 else ((vm.rng.next() >> 16) * n) >> 16"]
-    else:
-        body += ["    choice = vm.select(enabled)", "    k = enabled.index(choice)"]
-    body += ["    choice = enabled[k]"] if uniform else []
-    act = ["if a[choice] is not None:", "    vm._act(choice, a[choice])"]
-    if sole:
-        body += ["    states[0] = afters[k]"] + ["    " + line for line in act]
-    else:
-        body += ["    for sup, column in successors[choice]:",
-                 "        states[sup] = column[states[sup]]"] + ["    " + line for line in act]
-    return body + ["    fired.append(choice)"]
-
-
-def _stepper(parameters: Tuple[str, ...], events: Tuple[int, ...], edge: bool, quiet: bool, uniform: bool, strict: bool,
-             chooses: bool, total: bool, sole: bool, gate_sups: Tuple[int, ...]) -> types.FunctionType:
-    """The maker of a VM's step written out for its plan (``make`` takes ``parameters``, the
-    names of the parts of VM._bound's plan): the checks of ``events`` polled (_poll_lines), then the step of docs/semantics.md with the options as they are (edge
-    inputs, if-quiet control, uniform policy, strict, a controllable event to choose), the
-    inputs moved without a check when none can violate (``total``), and, for an image of one
-    supervisor (``sole``), its state read as one integer and the enabled events of each of
-    its states in a list (VM._sole_entry). One frame per step, the plan's parts its locals: on
-    the smallest models the step is mostly that fixed cost. A step whose plan is gone when it
-    is called (a caller kept ``vm.step`` across a bind) hands over to the VM's current one; a
-    callback that rebinds makes a new plan, and after the inputs a step whose plan is gone
-    chooses out of line (VM._choose), from the VM as it then is; a callback that loads an image
-    ends the step (_move_lines)."""
-    body = ["if vm._plan is not plan:      # bound again since: a caller kept this step (vm.step)",
-            "    vm._bound()",
-            "    return vm.step()"]
-    body += ["if not vm._bindings_checked:", "    vm._check_bindings()"] if strict else []
-    body += _poll_lines(events, True)
-    body += ["a = acts"]
-    if edge:
-        body += ["previous, current = vm.previous, sum(1 << event for event in fired)",
-                 "fired = [event for event in fired if not previous >> event & 1]",
-                 "vm.previous = current"]
-    body += ["states = vm.states", "if fired:"] + _move_lines(sole, total, ["return fired[:fired.index(event) + 1]"])
-    if quiet or not chooses:
-        body += ["    return fired"]
-    else:
-        body += ["    if vm._plan is not plan:",
-                 "        return vm._choose(fired)"]
-    if chooses:
-        body += _choice_lines(uniform, sole, gate_sups)
-    body += ["return fired"]
-    key = ("canonical", parameters, events, edge, quiet, uniform, strict, chooses, total, sole, gate_sups)
-    return _compiled(key, parameters, _gate_lines(gate_sups) + ["def step(vm%s):" % _check_args(len(events))]
-                     + ["    " + line for line in body] + ["return step"])
-
-
-def _exact_inputs_lines(sole: bool, total: bool, public_first: bool, acting: bool) -> list[str]:
-    """Source lines of the exact step that apply the inputs in ``fired`` (file indices; SCTPub:
-    public ones first, ``private`` by file index), each action right after its event's moves,
-    as _move_lines does for the canonical step but without mapping the step's events to file
-    order: ``canonical`` maps an event for its moves and its action. ``sole``: one supervisor,
-    whose state is the local ``s`` and whose column of each event is ``columns[event]`` (by
-    file index; an event outside its alphabet has a column that stays). An action that loads
-    an image ends the step there; one that rebinds leaves the rest of the step to SCT._choose
-    (its ``vm._plan is not vm_plan`` below). When no input can violate (``total``) and none
-    has an action (``acting`` false: the plan's actions, which nothing can change while only
-    moves run), the moves alone, by file index (``file_successors``): what published
-    controllers mostly are, actions on the controllable events, checks on the others."""
-    lines = ["if fired:"] + (["    fired.sort(key=private.__getitem__)"] if public_first else [])
-    if total and not acting:
-        lines += ["    for event in fired:"]
-        lines += ["        s = columns[event][s]", "    states[0] = s"] if sole else [
-            "        for sup, column in file_successors[event]:",
-            "            states[sup] = column[states[sup]]"]
-        return lines + ["    sct.input_buffer = fired", "else:", "    sct.input_buffer = fired"]
-    lines += ["    for event in fired:", "        c = canonical[event]"]
-    if sole:
-        move = ["s = columns[event][s]"] if total else [
-            "target = columns[event][s]",
-            "if target is None:",
-            "    states[0] = s",
-            "    vm._violate(c, 0)",
-            "    states, a = vm.states, (vm._plan or vm._bound())[0]",
-            "    s = states[0]",
-            "else:",
-            "    s = target"]
-        save, load = ["    states[0] = s"], ["    s = states[0]"]
-    else:
-        move = ["for sup, column in successors[c]:", "    target = column[states[sup]]"]
-        move += ["    states[sup] = target"] if total else [
-            "    if target is None:",
-            "        vm._violate(c, sup)",
-            "        states, a = vm.states, (vm._plan or vm._bound())[0]",
-            "    else:",
-            "        states[sup] = target"]
-        save = load = []
-    lines += ["        " + line for line in move + ["if a[c] is not None:"] + save + [
-        "    vm._act(c, a[c])",
-        "    if vm._loads != loads:",
-        "        sct.input_buffer = fired[:fired.index(event) + 1]",
-        "        sct.last_events = fired[:fired.index(event) + 1]",
-        "        return",
-        "    states, a = vm.states, (vm._plan or vm._bound())[0]"] + load]
-    return lines + (["    states[0] = s"] if sole else []) + [
-        "    sct.input_buffer = fired",
-        "    if vm._plan is not vm_plan:",
-        "        return sct._choose(fired)",
-        "else:",
-        "    sct.input_buffer = fired"]
-
-
-def _exact_choice_lines(sole: bool, gate_sups: Sequence[int]) -> list[str]:
-    """Source lines of the published choice: the enabled controllable events in file order (one
-    supervisor: its state's entry in ``table``, SCT._sole_entry; else per enabled mask,
-    SCT._file_order), the k-th with ``k = random.randint(0, 1000000000) % n`` drawn as CPython's
-    randint makes it (randint -> randrange -> _randbelow_with_getrandbits: ``getrandbits(30)``
-    until at most 10^9) without randint's three Python-level calls while ``randint`` is the
-    standard one (tests/python/test_sct_exact.py compares the random state step by step), then
-    its moves and its action; ``last_events`` the inputs and it, a list of its own."""
-    if sole:
-        lines = ["order, afters, events = table[s] or sct._sole_entry(s)"]
-    else:
-        lines = [_mask_line(gate_sups),
-                 "order = orders.get(mask)",
-                 "if order is None:",
-                 "    order = sct._file_order(mask)"]
-    lines += ["if order:",
-              "    if rnd.randint is randint:",
-              "        draw = getrandbits(30)",
-              "        while draw > 1000000000:",
-              "            draw = getrandbits(30)",
-              "    else:",
-              "        draw = rnd.randint(0, 1000000000)"]
-    if sole:
-        lines += ["    k = draw % len(order)",
-                  "    states[0] = afters[k]",
-                  "    event = events[k]",
-                  "    choice = order[k]"]
-    else:
-        lines += ["    choice, event = order[draw % len(order)]",
-                  "    for sup, column in successors[event]:",
-                  "        states[sup] = column[states[sup]]"]
-    return lines + ["    if a[event] is not None:",
-                    "        vm._act(event, a[event])",
-                    "    sct.last_events = [*fired, choice]",
-                    "    return",
-                    "sct.last_events = fired[:]"]
-
-
-def _exact_stepper(parameters: Tuple[str, ...], events: Tuple[int, ...], public_first: bool, chooses: bool, total: bool,
-                   sole: bool, acting: bool, gate_sups: Tuple[int, ...]) -> types.FunctionType:
-    """The maker of SCT exact mode's step written out for a plan of its VM (as _stepper; ``make``
-    takes ``parameters``, the names of SCT._plan_exact's parts), in the file's event indices
-    throughout, so nothing is mapped to file order per step: the
-    checks of file events ``events`` polled in file order (raising as in the published VM), the
-    true ones applied (_exact_inputs_lines), then, when there are controllable events, the
-    published choice (_exact_choice_lines). ``sole``: one supervisor, whose state the step keeps
-    in a local and whose enabled events in file order it reads per state. A callback that
-    rebinds while the inputs fire: the choice is made out of line (SCT._choose); ``acting``:
-    some polled input has an action."""
-    body = ["vm = sct.vm",
-            "if vm._plan is not vm_plan:",
-            "    sct._plan_exact()",
-            "    return sct.run_step()"] + _poll_lines(events, False)
-    body += ["a = acts", "states = vm.states"] + (["s = states[0]"] if sole else [])
-    body += _exact_inputs_lines(sole, total, public_first, acting)
-    body += _exact_choice_lines(sole, gate_sups) if chooses else ["sct.last_events = fired[:]"]
-    return _compiled(("exact", parameters, events, public_first, chooses, total, sole, acting, gate_sups), parameters,
-                     _gate_lines(gate_sups) + ["def run_step(sct%s):" % _check_args(len(events))]
-                     + ["    " + line for line in body] + ["return run_step"])
 
 
 def check_options(inputs: str, control: str, policy: str, learner: Optional[Learner]) -> None:
@@ -528,7 +248,7 @@ class VM(Bindings):
         self.seed, self.learner, self.on_violation = seed, learner, on_violation
         self._priority = priority
         self.actions, self.checks, self.data = {}, {}, {}
-        self._loads = 0     # images loaded since: a step that sees it change ends (_move_lines, _fire)
+        self._loads = 0     # images loaded since: a step that sees it change ends (apply_inputs_lines, _fire)
         self._in_hook = False   # on_violation is running: it may not load (_violate)
         self._install(image if isinstance(image, Image) else Image.parse(image))
         self.reset()
@@ -633,8 +353,9 @@ class VM(Bindings):
         self.violations = 0
         self.rng = XorShift32(self.seed)
 
-    def _enabled_mask(self) -> int:
-        """The controllable events every supervisor allows in its state: an AND over the gates."""
+    def _enabled_set(self) -> int:
+        """5. Enabled set, as a mask: the controllable events every supervisor allows in its
+        state, an AND over the gates (the written-out step ANDs them inline: enabled_set_line)."""
         mask, states = self.image.controllable, self.states
         for sup, masks in self._gates:
             mask &= masks[states[sup]]
@@ -642,9 +363,9 @@ class VM(Bindings):
 
     def enabled(self) -> list[int]:
         """Controllable events enabled by every supervisor, in canonical order."""
-        return _bits(self._enabled_mask())
+        return _bits(self._enabled_set())
 
-    def _enabled_set(self, mask: int) -> Tuple[int, ...]:
+    def _enabled_events(self, mask: int) -> Tuple[int, ...]:
         """The events of an enabled ``mask``, a tuple in canonical order, remembered per mask."""
         enabled = self._enabled_sets[mask] = tuple(_bits(mask))
         return enabled
@@ -654,7 +375,7 @@ class VM(Bindings):
         remembered in ``_sole``: such a model has few states, so every one met is kept. An
         event outside the supervisor's alphabet leaves it where it is."""
         state = self.states[0]
-        enabled = tuple(_bits(self._enabled_mask()))
+        enabled = tuple(_bits(self._enabled_set()))
         afters = tuple(pairs[0][1][state] if pairs else state for pairs in map(self.successors.__getitem__, enabled))
         table = self._sole
         assert table is not None, "only the step of a one-supervisor image asks"
@@ -667,7 +388,7 @@ class VM(Bindings):
         step does, out of line, from the VM as it now is; returns ``fired`` with it."""
         enabled = self.enabled()
         if enabled:
-            choice = self.select(enabled)
+            choice = self._select_event(enabled)
             self._fire((choice,), self._bound()[0])
             fired.append(choice)
         return fired
@@ -676,7 +397,7 @@ class VM(Bindings):
         """The plan: what the step needs of the bindings, the options and the tables, made
         after a bind, a load or a change of option. It is (per event its (action, data) or None,
         whether there is a controllable event); making it also writes the step out for it
-        (_stepper) and installs that on the VM, where ``vm.step`` finds it before the class's."""
+        (swarmvm_step_source.canonical_step) and installs that on the VM, where ``vm.step`` finds it before the class's."""
         plan = self._plan
         if plan is None:
             checks, actions, data = self.checks, self.actions, self.data
@@ -691,7 +412,7 @@ class VM(Bindings):
                          successors=self.successors, columns=columns, table=self._sole,
                          controllable=self.image.controllable, gates=self._gates, sets=self._enabled_sets,
                          event_name=self.image.event_name, CallbackError=CallbackError, loads=self._loads)
-            make = _stepper(tuple(parts), tuple(e for e, _, _ in polls), self.inputs == "edge",
+            make = canonical_step(tuple(parts), tuple(e for e, _, _ in polls), self.inputs == "edge",
                             self.control == "if-quiet", self.policy == "uniform", bool(self.strict), chooses,
                             self._total is not None, sole, tuple(sup for sup, _ in self._gates))
             self.__dict__["step"] = types.MethodType(make(**parts), self)
@@ -706,7 +427,7 @@ class VM(Bindings):
         """Fire ``events`` in order: for each, every supervisor whose alphabet holds it moves (or
         counts a violation), then its action from ``acts`` (the bound plan's) runs. A callback
         may rebind or set ``states``: what it changed holds for the events after it; an action
-        that loads an image ends the firing there (as _move_lines)."""
+        that loads an image ends the firing there (as apply_inputs_lines)."""
         states, successors, loads = self.states, self.successors, self._loads
         for event in events:
             for sup, successor in successors[event]:
@@ -761,7 +482,7 @@ class VM(Bindings):
                 weight = (weight * image.probs[image.state_first[g] + (image.state_defined[g] & below).bit_count()]) >> 15
         return weight
 
-    def select(self, enabled: Sequence[int]) -> int:
+    def _select_event(self, enabled: Sequence[int]) -> int:
         """One of the enabled controllable events, by the VM's policy (enabled is non-empty)."""
         if self.policy == "first":
             return min(enabled, key=self.rank.__getitem__)
@@ -907,7 +628,7 @@ class SCT:
         return self.run_step()
 
     def _plan_exact(self) -> None:
-        """Write the exact step out for the VM's current plan (_exact_stepper) and install it on
+        """Write the exact step out for the VM's current plan (swarmvm_step_source.exact_step) and install it on
         this object, where ``run_step`` finds it before the class's; it plans again when the
         VM's plan changes."""
         vm, canonical = self.vm, self._canonical
@@ -928,7 +649,7 @@ class SCT:
                      columns=self._sole_columns, table=self._sole_table, controllable=vm.image.controllable,
                      gates=vm._gates, private=self._private, orders=self._orders, rnd=random, randint=_RANDINT,
                      getrandbits=random.getrandbits, loads=vm._loads)
-        make = _exact_stepper(tuple(parts), tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
+        make = exact_step(tuple(parts), tuple(event for event, _, _ in polls), self._public_first, vm_plan[1],
                               vm._total is not None, sole, acting, gate_sups)
         self.__dict__["run_step"] = types.MethodType(make(**parts), self)
 

@@ -12,7 +12,7 @@ replaces 0 are also read from what the VM does with them (swarmvm.c uses the hea
 import subprocess
 
 from checkout import EXAMPLE
-from swarmvm.compiler import naming
+from swarmvm.targets import kilobot
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.compiler.runtime_files import RUNTIME_C, RUNTIME_CPP, image_format, python_vm
 
@@ -117,7 +117,7 @@ int main()
 
 def test_a_stream_chunk_is_one_kilobot_message():
     """The chunk (sequence byte and image bytes) fills a kilolib message's payload exactly."""
-    assert 1 + F.STREAM_CHUNK_DATA == naming.KILOBOT_MESSAGE_BYTES
+    assert 1 + F.STREAM_CHUNK_DATA == kilobot.KILOBOT_MESSAGE_BYTES
 
 
 def test_header_offsets_follow_the_documented_table():

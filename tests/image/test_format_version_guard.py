@@ -3,7 +3,7 @@
 As nanopb's generated code checks its runtime's version: the C tables header (``#error``), the
 ARGoS image header (``static_assert``) and the Python table module (``ImportError``) each name
 the format version they hold. Each test generates a target, then gives it a runtime that claims
-the next version (the copied runtime file edited) and expects a clear refusal; the unedited
+the next version (the copied format file edited: swarmvm_format.h, .hpp or .py) and expects a clear refusal; the unedited
 target builds or imports."""
 
 import subprocess
@@ -37,7 +37,7 @@ def test_c_tables_refuse_another_runtime_version(tmp_path):
     compile_tables = ["gcc", "-std=c99", "-fsyntax-only", "energy_worker_tables.c"]
     assert subprocess.run(compile_tables, cwd=tmp_path, capture_output=True).returncode == 0
     version = F.FORMAT_VERSION
-    _next_version(tmp_path / "swarmvm.h", "#define SVM_FORMAT_VERSION %du" % version,
+    _next_version(tmp_path / "swarmvm_format.h", "#define SVM_FORMAT_VERSION %du" % version,
                   "#define SVM_FORMAT_VERSION %du" % (version + 1))
     run = subprocess.run(compile_tables, cwd=tmp_path, capture_output=True, text=True)
     assert run.returncode != 0 and "#error" in run.stderr and MESSAGE in run.stderr, run.stderr
@@ -49,7 +49,7 @@ def test_cpp_image_header_refuses_another_runtime_version(tmp_path):
     compile_image = ["g++", "-std=c++17", "-fsyntax-only", "use.cpp"]
     assert subprocess.run(compile_image, cwd=tmp_path, capture_output=True).returncode == 0
     version = F.FORMAT_VERSION
-    _next_version(tmp_path / "swarmvm.hpp", "kFormatVersion = %d;" % version, "kFormatVersion = %d;" % (version + 1))
+    _next_version(tmp_path / "swarmvm_format.hpp", "kFormatVersion = %d;" % version, "kFormatVersion = %d;" % (version + 1))
     run = subprocess.run(compile_image, cwd=tmp_path, capture_output=True, text=True)
     assert run.returncode != 0 and "static assertion failed" in run.stderr and MESSAGE in run.stderr, run.stderr
 

@@ -72,7 +72,7 @@ def test_pack_and_check_an_image(tmp_path):
     assert result.exit_code == 0 and result.stdout == "%s: %d bytes\n" % (out, out.stat().st_size)
     result = CliRunner().invoke(main, ["check", str(out)])
     assert result.exit_code == 0
-    assert "| logic.svm | 10 | 4 | 32 | 124 | %d |" % out.stat().st_size in result.stdout
+    assert "| %s | 10 | 4 | 32 | 124 | %d |" % (out, out.stat().st_size) in result.stdout
     raw = out.read_bytes()
     out.write_bytes(raw[:-1] + bytes([raw[-1] ^ 0xFF]))
     result = CliRunner().invoke(main, ["check", str(out)])
