@@ -1,6 +1,7 @@
 """Render a target's templates, in memory: swarmvm.boundary.output writes the files, all or nothing."""
 
 from collections.abc import Callable
+from importlib.abc import Traversable
 from typing import Optional
 
 import jinja2
@@ -25,9 +26,15 @@ def _hex_lines(data: bytes, per_line: int = 32) -> list[str]:
     return [data[i:i + per_line].hex() for i in range(0, len(data), per_line)]
 
 
+# A target's template folder by its name (swarmvm.targets.register): ``<target>/x.j2`` is read
+# from there, any other name from the package's templates/.
+FOLDERS: dict[str, Traversable] = {}
+
+
 def _template_source(name: str) -> Optional[tuple[str, None, Callable[[], bool]]]:
     """Jinja's loader over the installed package: (source, None, always up to date)."""
-    resource = TEMPLATES.joinpath(*name.split("/"))
+    folder, _, rest = name.partition("/")
+    resource = FOLDERS[folder].joinpath(*rest.split("/")) if folder in FOLDERS else TEMPLATES.joinpath(*name.split("/"))
     if not resource.is_file():
         return None
     return resource.read_text(encoding="utf-8"), None, lambda: True

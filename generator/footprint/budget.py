@@ -20,12 +20,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..boundary.errors import InputError, read_input
-from .measure import COLUMN, TARGET_OF_MACHINE, Limits, Row
+from ..boundary.errors import InputError, decode_text, read_input
+from ..boundary.structure import check_structure
+from ..targets import TARGETS as ALL_TARGETS
+from .measure import COLUMN, Limits, Row
 
 PYPROJECT = "pyproject.toml"
 PYPROJECT_TABLE = ("tool", "swarmvm", "footprint")
-TARGETS = tuple(sorted(TARGET_OF_MACHINE.values()))
+TARGETS = tuple(sorted(name for name, target in ALL_TARGETS.items() if target.elf is not None))   # measured ones
 
 
 @dataclass(frozen=True)
@@ -39,13 +41,13 @@ class Budgets:
         return {**self.targets.get(target, {}), **self.rows.get((target, supervisor), {})}
 
 
-def _table(file: str, key: str, value: Any) -> dict:
+def _table(file: str, key: str, value: Any) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise InputError(file, key, "must be a table, got %s" % type(value).__name__)
     return value
 
 
-def _bounds(file: str, key: str, table: dict) -> dict[str, int]:
+def _bounds(file: str, key: str, table: dict[str, Any]) -> dict[str, int]:
     """The column bounds of one table (a target's without its ``rows``, or a row's)."""
     bounds = {}
     for column, value in table.items():
@@ -58,7 +60,7 @@ def _bounds(file: str, key: str, table: dict) -> dict[str, int]:
     return bounds
 
 
-def parse_budgets(file: str, data: dict, prefix: tuple[str, ...] = ()) -> Budgets:
+def parse_budgets(file: str, data: dict[str, Any], prefix: tuple[str, ...] = ()) -> Budgets:
     """Budgets from parsed TOML, its tables under ``prefix``; InputError naming the file and
     the dotted key of the first thing wrong."""
     for depth, key in enumerate(prefix):
@@ -78,9 +80,11 @@ def parse_budgets(file: str, data: dict, prefix: tuple[str, ...] = ()) -> Budget
 
 def read_budgets(path: str) -> Budgets:
     """The budgets of a TOML file (``[tool.swarmvm.footprint]`` in a ``pyproject.toml``)."""
+    text = decode_text(path, read_input(path))
+    check_structure(path, text, comment="#")
     try:
-        data = tomllib.loads(read_input(path).decode("utf-8"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         raise InputError(path, "", "not a TOML file (%s)" % exc)
     return parse_budgets(path, data, PYPROJECT_TABLE if Path(path).name == PYPROJECT else ())
 
@@ -109,20 +113,21 @@ class Check:
 
 
 def _limit_checks(row: Row, limits: Limits) -> list[Check]:
-    """The robots' hard limits and the seed's KPI, with the messages they have always had."""
+    """The row's robot's hard limits (its target's record) and the seed's KPI."""
     found = []
-    if row.target == "kilobot":
+    robot = limits.robots.get(row.target)
+    if robot is not None:
         flash, ram = row.values["flash"], row.values["ram"]
-        found.append(Check(row, "limit", "flash", limits.kilobot_flash,
-                           "flash %d B exceeds the Kilobot's %d B" % (flash, limits.kilobot_flash)))
-        found.append(Check(row, "limit", "ram", limits.kilobot_sram - limits.kilobot_min_stack,
+        found.append(Check(row, "limit", "flash", robot.flash,
+                           "flash %d B exceeds the %s's %d B" % (flash, robot.robot, robot.flash)))
+        found.append(Check(row, "limit", "ram", robot.sram - robot.min_stack,
                            "static RAM %d B leaves %d B of the %d B SRAM for the stack, below %d B"
-                           % (ram, limits.kilobot_sram - ram, limits.kilobot_sram, limits.kilobot_min_stack)))
+                           % (ram, robot.sram - ram, robot.sram, robot.min_stack)))
         if "stack" in row.values:                   # a known worst case: it and static RAM must fit the SRAM
             stack = row.values["stack"]
-            found.append(Check(row, "limit", "stack", limits.kilobot_sram - ram,
-                               "static RAM %d B + worst-case stack %d B = %d B exceeds the Kilobot's %d B SRAM"
-                               % (ram, stack, ram + stack, limits.kilobot_sram)))
+            found.append(Check(row, "limit", "stack", robot.sram - ram,
+                               "static RAM %d B + worst-case stack %d B = %d B exceeds the %s's %d B SRAM"
+                               % (ram, stack, ram + stack, robot.robot, robot.sram)))
     found.append(Check(row, "limit", "vm", limits.vm,
                        "the VM takes %d B, above the %d B KPI" % (row.values["vm"], limits.vm)))
     return found

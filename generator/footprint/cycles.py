@@ -16,6 +16,7 @@ The dispatch a check goes through is one of the functions declared with
 ``--indirect svm_step=TARGET,...`` (the same declaration the worst-case stack needs).
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -25,6 +26,7 @@ from elftools.elf.sections import SymbolTableSection
 from ..boundary.errors import InputError
 from ..compiler.runtime_files import image_format
 from ..readers.event_script import read_script_rows
+from ..targets import TARGETS
 from .cycles_m4 import m4_steps
 from .kilobot_board import KilobotToolMissing
 from .kilobot_board import run as run_board
@@ -55,7 +57,7 @@ class Cycles:
     def worst_step(self) -> int:
         return self.per_step.index(self.worst) + 1
 
-    def as_json(self) -> dict:
+    def as_json(self) -> dict[str, object]:
         return dict(script=self.script, steps=len(self.per_step), mean=self.mean, worst=self.worst,
                     worst_step=self.worst_step, worst_inputs=list(self.worst_inputs))
 
@@ -98,11 +100,16 @@ def measure_cycles(elf: str, target: str, image: bytes, script: str, dispatch: t
     if not checks:
         raise FootprintError("%s: --cycles needs the dispatch svm_step calls, declared with --indirect svm_step=NAME,... "
                              "(none of %s is in the image)" % (elf, ", ".join(dispatch) or "no name given"))
-    if target == "capbot":
-        per_step = m4_steps(elf, addresses[STEP_ROOT], checks, masks)
-    else:
-        per_step = _kilobot_steps(elf, addresses, checks, masks)
+    record = TARGETS[target].elf
+    if record is None or record.emulator not in EMULATORS:
+        raise FootprintError("%s: --cycles: no emulator runs target %s's images" % (elf, target))
+    per_step = EMULATORS[record.emulator](elf, addresses, checks, masks)
     return Cycles(script, per_step, inputs[per_step.index(max(per_step))])
+
+
+def _m4_steps(elf: str, addresses: dict[str, int], checks: list[int], masks: list[bytes]) -> tuple[int, ...]:
+    """Instructions of each step of a Cortex-M4 program in QEMU (swarmvm.footprint.cycles_m4)."""
+    return m4_steps(elf, addresses[STEP_ROOT], checks, masks)
 
 
 def _kilobot_steps(elf: str, addresses: dict[str, int], checks: list[int], masks: list[bytes]) -> tuple[int, ...]:
@@ -119,3 +126,8 @@ def _kilobot_steps(elf: str, addresses: dict[str, int], checks: list[int], masks
         raise FootprintError("%s: %d of the script's %d steps ran in %d cycles (the run ended: %s)"
                              % (elf, len(run.steps), len(masks), limit, " ".join(map(str, run.end)) or "no end"))
     return tuple(run.steps[:len(masks)])
+
+
+# What runs a target's images for --cycles, by the name its record gives (targets.record.Elf).
+EMULATORS: dict[str, Callable[[str, dict[str, int], list[int], list[bytes]], tuple[int, ...]]] = {
+    "kilobot_board": _kilobot_steps, "qemu_m4": _m4_steps}

@@ -10,7 +10,8 @@ import json
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..boundary.errors import InputError, read_input
+from ..boundary.errors import InputError, decode_text, read_input
+from ..boundary.structure import check_structure
 from .measure import COLUMN, COLUMNS, Row, column_value
 
 REPORT_FORMAT = "swarmvm footprint"
@@ -46,9 +47,11 @@ def _image_row(path: str, key: str, image: object) -> Row:
 def read_baseline(path: str) -> Baseline:
     """The rows of a JSON report written by ``swarmvm footprint --json`` of this format version;
     InputError naming the file and the key for anything else."""
+    text = decode_text(path, read_input(path))
+    check_structure(path, text)
     try:
-        data = json.loads(read_input(path))
-    except ValueError as exc:                           # JSONDecodeError, UnicodeDecodeError
+        data = json.loads(text)
+    except ValueError as exc:                           # JSONDecodeError
         raise InputError(path, "", "not a JSON file (%s)" % exc)
     if not isinstance(data, dict) or data.get("format") != REPORT_FORMAT:
         raise InputError(path, "format", "not a swarmvm footprint report (write one with swarmvm footprint --json)")

@@ -1,5 +1,8 @@
 """Memory footprint of linked VM images: flash and static RAM, split into VM core, tables and
-application, with the Kilobot's hard limits and the seed's 100 kB KPI (docs/footprint.md).
+application, with the robots' hard limits and the seed's 100 kB KPI (docs/footprint.md).
+
+The target of an image is the one whose record (swarmvm.targets, its ``elf``) recognises it:
+its machine, and the symbols that tell two targets of one machine apart (:func:`recognise`).
 
 Only linked ELF files are read (pyelftools), so the figures are what the device holds:
 
@@ -9,50 +12,79 @@ Only linked ELF files are read (pyelftools), so the figures are what the device 
   copied to RAM at reset). AVR's ``.eeprom``, fuse, lock and signature sections are neither.
 - the **tables** are the table image: the object whose bytes start with the image magic and
   whose size is the image's own length field, wherever the build put it.
-- the **VM core** is what ``runtime_c/*.c`` defines (but for the robot runtime
-  ``swarmvm_kilobot.c``, which is application): a global symbol whose name one of those
+- the **VM core** is what ``runtime_c/*.c`` defines (but for the robot runtimes a target's
+  record names, such as ``swarmvm_kilobot.c``, which are application): a global symbol whose name one of those
   files defines at file scope, a local symbol listed after the ``STT_FILE`` entry of one of
   those files, and the VM instance (an object named ``vm`` or ``..._vm``) wherever it lives.
 - the **application** is the rest of each total: start-up code, C library, generated glue,
   callbacks, and bytes no symbol accounts for (vector tables, alignment).
 """
 
+import dataclasses
 import os
 import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from importlib.abc import Traversable
+from typing import TYPE_CHECKING, Any, Iterator, Union
 
 from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
+from elftools.elf.sections import Section, Symbol, SymbolTableSection
 
 from .stack import Stack
 
 if TYPE_CHECKING:
     from .cycles import Cycles
-from ..compiler.runtime_files import RUNTIME_C, RUNTIME_CPP, RUNTIME_FORMAT_PY, RUNTIME_PY, image_format
+from ..compiler.runtime_files import (
+    CPP_COMPAT_HEADERS,
+    CPP_VM_HEADERS,
+    RUNTIME_C,
+    RUNTIME_CPP,
+    RUNTIME_PY_DIR,
+    image_format,
+)
+from ..targets import TARGETS
+from ..targets.record import RobotLimits
 
 FORMAT = image_format()
-TARGET_OF_MACHINE = {"EM_AVR": "kilobot", "EM_ARM": "capbot"}
+ElfPath = Union[str, "os.PathLike[str]"]
 NOT_MEMORY = (".eeprom", ".fuse", ".lock", ".signature", ".user_signatures")
 VM_INSTANCE = re.compile(r"(^|_)vm$")
 # An external definition in the runtime's C sources: a line starting in column 0 with a type
 # (not static) and ending the declarator at '(' (function), '[' / '=' / ';' (object).
 DEFINITION = re.compile(r"^(?!typedef|extern|static|#)[A-Za-z_][\w\s\*]*?\**\b([A-Za-z_]\w*)\s*[\(\[=;]", re.M)
 
-KILOBOT_FLASH = 28672                  # 32 KB minus the bootloader at 0x7000
-KILOBOT_SRAM = 2048
-KILOBOT_MIN_STACK = 1024
 VM_KPI = 100000                        # the seed's KPI: a VM below 100 kB
 SEED_KPI_SOURCE = {"C++ VM (published)": 15699, "Python VM (published)": 7343}
 
 
+def robot_limits() -> dict[str, RobotLimits]:
+    """The hard limits of every target whose record has them, by target."""
+    return {name: target.limits for name, target in sorted(TARGETS.items()) if target.limits is not None}
+
+
 @dataclass(frozen=True)
 class Limits:
-    kilobot_flash: int = KILOBOT_FLASH
-    kilobot_sram: int = KILOBOT_SRAM
-    kilobot_min_stack: int = KILOBOT_MIN_STACK
+    """What every row is checked against: its robot's hard limits (by target, the records' by
+    default) and the seed's KPI on the VM."""
+    robots: Mapping[str, RobotLimits] = field(default_factory=robot_limits)
     vm: int = VM_KPI
+
+    def replaced(self, target: str, flash: int | None = None, sram: int | None = None,
+                 min_stack: int | None = None) -> "Limits":
+        """These limits with the figures given of ``target``'s robot replaced."""
+        old = self.robots[target]
+        robot = RobotLimits(old.robot, old.flash if flash is None else flash, old.sram if sram is None else sram,
+                            old.min_stack if min_stack is None else min_stack)
+        return dataclasses.replace(self, robots={**self.robots, target: robot})
+
+    def as_json(self) -> dict[str, int]:
+        """``<target>_flash``, ``<target>_sram``, ``<target>_min_stack`` of each robot, then ``vm``."""
+        figures = {"%s_%s" % (target, key): getattr(robot, key)
+                   for target, robot in self.robots.items() for key in ("flash", "sram", "min_stack")}
+        return dict(figures, vm=self.vm)
 
 
 @dataclass
@@ -74,13 +106,13 @@ class Footprint:
     cycles: "Cycles | None" = None      # cycles per step with an event script (footprint_cycles)
 
     @property
-    def vm(self):
+    def vm(self) -> int:
         """The VM proper (core and tables, flash and RAM), the figure the seed's KPI bounds."""
         return self.flash.core + self.flash.tables + self.ram.core + self.ram.tables
 
-    def as_json(self) -> dict:
+    def as_json(self) -> dict[str, Any]:
         """The image as the JSON report writes it (and a baseline holds it)."""
-        image = dict(target=self.target, supervisor=self.supervisor, elf=self.elf, flash=asdict(self.flash),
+        image: dict[str, Any] = dict(target=self.target, supervisor=self.supervisor, elf=self.elf, flash=asdict(self.flash),
                      ram=asdict(self.ram), vm=self.vm)
         if self.stack is not None:
             image["stack"] = self.stack.as_json()
@@ -129,9 +161,9 @@ class Row:
         return "%s/%s" % (self.target, self.supervisor)
 
 
-def column_value(image: dict, column: Column):
+def column_value(image: dict[str, Any], column: Column) -> Any:
     """The figure of ``column`` in a JSON image, or None when the image does not hold it."""
-    value = image
+    value: Any = image
     for key in column.path:
         if not isinstance(value, dict) or key not in value:
             return None
@@ -153,13 +185,15 @@ class FootprintError(Exception):
 
 # Robot runtimes in runtime_c/ that run the VM as a program (kilolib's setup/loop, messages):
 # what a robot application needs around the VM, so they count as application, not VM core.
-PLATFORM_RUNTIMES = frozenset({"swarmvm_kilobot.c"})
+PLATFORM_RUNTIMES = frozenset(name for target in TARGETS.values() if target.elf is not None
+                              for name in target.elf.platform_runtime)
 
 
-def runtime_names(runtime=RUNTIME_C):
+def runtime_names(runtime: Traversable = RUNTIME_C) -> tuple[set[str], set[str]]:
     """(global names the runtime's C sources define, their file names), platform runtimes aside."""
-    names, files = set(), set()
-    for source in sorted(Path(runtime).glob("*.c")):
+    names: set[str] = set()
+    files: set[str] = set()
+    for source in sorted(Path(str(runtime)).glob("*.c")):
         if source.name in PLATFORM_RUNTIMES:
             continue
         files.add(source.name)
@@ -167,7 +201,7 @@ def runtime_names(runtime=RUNTIME_C):
     return names, files
 
 
-def _memory_kind(section):
+def _memory_kind(section: Section) -> str | None:
     """'flash', 'ram', 'both' or None for a section of a linked image."""
     flags = section["sh_flags"]
     if not flags & SH_FLAGS.SHF_ALLOC or section.name in NOT_MEMORY or section["sh_size"] == 0:
@@ -177,7 +211,7 @@ def _memory_kind(section):
     return "ram" if section["sh_type"] == "SHT_NOBITS" else "both"
 
 
-def _check_section(path, section, file_size):
+def _check_section(path: ElfPath, section: Section, file_size: int) -> None:
     """FootprintError unless a memory section with contents lies within the file: its size is
     counted and its bytes read (an image's header), so one that runs past the end would give
     figures, or a read, that the file does not hold."""
@@ -186,7 +220,7 @@ def _check_section(path, section, file_size):
                              % (path, section.name, section["sh_size"], section["sh_offset"], file_size))
 
 
-def _check_symbol(path, elf, symbol):
+def _check_symbol(path: ElfPath, elf: ELFFile, symbol: Symbol) -> None:
     """FootprintError unless a sized symbol lies inside the section it names: its size is
     counted in that section's bucket, and an image's bytes are read from there."""
     index = symbol["st_shndx"]
@@ -201,12 +235,13 @@ def _check_symbol(path, elf, symbol):
                                 section["sh_size"], section["sh_addr"]))
 
 
-def _symbols(elf):
+def _symbols(elf: ELFFile) -> Iterator[tuple[Symbol, str | None]]:
     """(symbol, defining file or None) for every sized object and function, aliases once."""
     table = elf.get_section_by_name(".symtab")
-    if table is None:
+    if not isinstance(table, SymbolTableSection):
         raise FootprintError("no symbol table (stripped image)")
-    seen, current_file = set(), None
+    seen: set[tuple[int, int]] = set()
+    current_file: str | None = None
     for symbol in table.iter_symbols():
         kind, bind = symbol["st_info"]["type"], symbol["st_info"]["bind"]
         if kind == "STT_FILE":
@@ -223,7 +258,7 @@ def _symbols(elf):
         yield symbol, (current_file if bind == "STB_LOCAL" else None)
 
 
-def _is_image(elf, symbol):
+def _is_image(elf: ELFFile, symbol: Symbol) -> bool:
     """Whether an object symbol holds a table image (magic, and its length field = its size)."""
     if symbol["st_info"]["type"] != "STT_OBJECT" or symbol["st_size"] < FORMAT.MIN_IMAGE_SIZE:
         return False
@@ -232,10 +267,10 @@ def _is_image(elf, symbol):
         return False
     start = symbol["st_value"] - section["sh_addr"]         # inside the section: _check_symbol
     header = FORMAT.Header.unpack(section.data()[start:start + FORMAT.HEADER_SIZE])
-    return header.magic == FORMAT.MAGIC and header.length == symbol["st_size"]
+    return bool(header.magic == FORMAT.MAGIC and header.length == symbol["st_size"])
 
 
-def table_image(path) -> bytes:
+def table_image(path: ElfPath) -> bytes:
     """The bytes of the table image linked into an ELF (the first symbol holding one)."""
     with open(path, "rb") as handle:
         elf = ELFFile(handle)
@@ -244,23 +279,38 @@ def table_image(path) -> bytes:
             if _is_image(elf, symbol):
                 section = elf.get_section(symbol["st_shndx"])
                 start = symbol["st_value"] - section["sh_addr"]
-                return section.data()[start:start + symbol["st_size"]]
+                data: bytes = section.data()[start:start + symbol["st_size"]]
+                return data
     raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
 
 
-def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
+def recognise(path: ElfPath, machine: str, symbols: Callable[[], Iterable[str]]) -> str:
+    """The target whose record recognises an ELF of ``machine`` defining ``symbols()`` (read only
+    when a record asks for symbols): of the targets of that machine whose symbols it all defines,
+    the one asking for the most (targets.record.Elf); FootprintError when none is, or two are equally."""
+    candidates = [(name, t.elf.symbols) for name, t in sorted(TARGETS.items())
+                  if t.elf is not None and t.elf.machine == machine]
+    names = set(symbols()) if any(wanted for _, wanted in candidates) else set()
+    found = sorted(((len(wanted), name) for name, wanted in candidates if names.issuperset(wanted)), reverse=True)
+    if not found:
+        raise FootprintError("%s: machine %s is not a known VM target" % (path, machine))
+    if len(found) > 1 and found[0][0] == found[1][0]:
+        raise FootprintError("%s: both targets %s and %s recognise this %s image: one of their records must ask "
+                             "for a symbol the other's images lack" % (path, found[1][1], found[0][1], machine))
+    return found[0][1]
+
+
+def measure(path: ElfPath, supervisor: str | None = None, target: str | None = None,
+            runtime: Traversable = RUNTIME_C) -> Footprint:
     """The Footprint of one linked ELF; target from its machine, supervisor from its name."""
     core_names, core_files = runtime_names(runtime)
     with open(path, "rb") as handle:
         file_size = os.fstat(handle.fileno()).st_size
         elf = ELFFile(handle)
-        machine = elf["e_machine"]
         if target is None:
-            if machine not in TARGET_OF_MACHINE:
-                raise FootprintError("%s: machine %s is not a known VM target" % (path, machine))
-            target = TARGET_OF_MACHINE[machine]
+            target = recognise(path, elf["e_machine"], lambda: (symbol.name for symbol, _ in _symbols(elf)))
         result = Footprint(target, supervisor or Path(path).stem, str(path))
-        kinds = {}
+        kinds: dict[int, str | None] = {}
         for index, section in enumerate(elf.iter_sections()):
             kind = _memory_kind(section)
             kinds[index] = kind
@@ -294,10 +344,19 @@ def measure(path, supervisor=None, target=None, runtime=RUNTIME_C):
     return result
 
 
-def source_sizes():
-    """Bytes of source of each runtime, to compare with the seed's KPI table."""
-    return {"Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)":
-                len(RUNTIME_PY.read_bytes()) + len(RUNTIME_FORMAT_PY.read_bytes()),
-            "C VM core (runtime_c/swarmvm.c + swarmvm.h)":
-                sum(len((RUNTIME_C / n).read_bytes()) for n in ("swarmvm.c", "swarmvm.h")),
-            "C++ VM (runtime_cpp/swarmvm.hpp)": len((RUNTIME_CPP / "swarmvm.hpp").read_bytes())}
+# The seed's KPI measure, bytes of source, per runtime (docs/footprint.md, "Source size"): each
+# row's folder and files. A VM's row counts what a robot runs of it; the C++ compatibility layer
+# (published SCT programs, swarmvm_compat.hpp) has a row of its own.
+SOURCE_ROWS = (
+    ("Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py + swarmvm_step_source.py)", RUNTIME_PY_DIR,
+     ("swarmvm_vm.py", "swarmvm_format.py", "swarmvm_step_source.py")),
+    ("C VM core (runtime_c/swarmvm.c + swarmvm.h + swarmvm_format.h)", RUNTIME_C,
+     ("swarmvm.c", "swarmvm.h", "swarmvm_format.h")),
+    ("C++ VM (runtime_cpp/%s)" % " + ".join(CPP_VM_HEADERS), RUNTIME_CPP, CPP_VM_HEADERS),
+    ("C++ compatibility layer (runtime_cpp/%s)" % " + ".join(CPP_COMPAT_HEADERS), RUNTIME_CPP, CPP_COMPAT_HEADERS),
+)
+
+
+def source_sizes() -> dict[str, int]:
+    """Bytes of source of each runtime (SOURCE_ROWS), to compare with the seed's KPI table."""
+    return {name: sum(len((folder / n).read_bytes()) for n in files) for name, folder, files in SOURCE_ROWS}

@@ -53,7 +53,7 @@ class QemuGdb:
     def __enter__(self) -> "QemuGdb":
         return self
 
-    def __exit__(self, *exc_info) -> None:
+    def __exit__(self, *exc_info: object) -> None:
         self.close()
 
     def output(self) -> str:

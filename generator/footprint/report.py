@@ -6,7 +6,7 @@ User text (ELF and file names, supervisor names) reaches Markdown through
 :func:`swarmvm.boundary.escape.markdown` and XML through :func:`swarmvm.boundary.escape.html`."""
 
 import json
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 from ..boundary.errors import InputError
 from ..boundary.escape import html, markdown
@@ -130,8 +130,9 @@ def markdown_report(report: FootprintReport, runtime_sizes: bool = False) -> str
     own figures, next to the seed's KPI table)."""
     limits = report.limits
     lines = ["# VM footprint", "", INTRODUCTION, ""] + _rows_section(report)
-    lines += ["", "Limits: Kilobot flash <= %d B, Kilobot stack >= %d B of %d B SRAM, VM <= %d B (seed KPI)."
-              % (limits.kilobot_flash, limits.kilobot_min_stack, limits.kilobot_sram, limits.vm)]
+    robots = ["%s flash <= %d B, %s stack >= %d B of %d B SRAM" % (r.robot, r.flash, r.robot, r.min_stack, r.sram)
+              for r in limits.robots.values()]
+    lines += ["", "Limits: %s." % ", ".join(robots + ["VM <= %d B (seed KPI)" % limits.vm])]
     if report.budgets.file:
         budgeted = sum(check.kind == "budget" for check in report.checks)
         lines += ["", markdown("Budgets: %d checks from %s." % (budgeted, report.budgets.file))]
@@ -183,7 +184,7 @@ def junit_report(report: FootprintReport) -> str:
 def json_report(report: FootprintReport, runtime_sizes: bool = False) -> str:
     """The report as JSON, of format ``REPORT_VERSION``: what ``--baseline`` reads next time."""
     images = [dict(f.as_json(), budget=report.budgets.of(f.target, f.supervisor)) for f in report.footprints]
-    data = dict(format=REPORT_FORMAT, version=REPORT_VERSION, limits=asdict(report.limits),
+    data = dict(format=REPORT_FORMAT, version=REPORT_VERSION, limits=report.limits.as_json(),
                 budget_file=report.budgets.file or None, images=images, violations=report.failures())
     if runtime_sizes:
         data.update(source_bytes=source_sizes(), seed_source_bytes=SEED_KPI_SOURCE)

@@ -24,7 +24,7 @@ import bisect
 import re
 import shutil
 import subprocess
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -33,8 +33,8 @@ from elftools.elf.elffile import ELFFile
 from elftools.elf.sections import SymbolTableSection
 
 from ..boundary.errors import InputError
+from ..targets import TARGETS
 
-OBJDUMP = {"kilobot": "avr-objdump", "capbot": "arm-none-eabi-objdump"}
 STEP_ROOT = "svm_step"
 STEP_SOURCE = "swarmvm.c"                   # the VM core's source: svm_step and its static helpers
 MAIN_ROOT = "main"
@@ -76,8 +76,8 @@ class Stack:
     total: int | None
     unknown: dict[str, str]                     # "step" / "total" -> why it is not known
 
-    def as_json(self) -> dict:
-        known = {key: value for key, value in (("step", self.step), ("total", self.total)) if value is not None}
+    def as_json(self) -> dict[str, object]:
+        known: dict[str, object] = {key: value for key, value in (("step", self.step), ("total", self.total)) if value is not None}
         return dict(known, unknown=self.unknown) if self.unknown else known
 
 
@@ -224,14 +224,42 @@ def _register_list(text: str) -> list[str]:
     return names
 
 
+@dataclass(frozen=True)
+class Architecture:
+    """How the call graph of one instruction set is read: its disassembler, the reader of its
+    instructions, what a call pushes (a function without a .su entry gets it in its frame),
+    where a comment starts in an operand, and whether interrupt handlers add to the total."""
+    objdump: str
+    reader: Callable[[Function, int, str, str, int], None]
+    call_pushes: int
+    comment: str | None
+    handlers: re.Pattern[str] | None        # the handlers' names: the deepest one adds to main's
+
+
+# The instruction sets whose call graphs are read, by the name a target's record gives them
+# (targets.record.Elf): on AVR a call pushes its 2-byte return address, on ARM ``bl`` pushes nothing.
+ARCHITECTURES = {
+    "avr": Architecture("avr-objdump", _read_avr, call_pushes=2, comment=None, handlers=AVR_VECTOR),
+    "arm": Architecture("arm-none-eabi-objdump", _read_arm, call_pushes=0, comment="@", handlers=None),
+}
+
+
+def architecture(target: str) -> Architecture:
+    """The architecture of ``target``'s images (its record's ``elf``); StackUnknown when it has none."""
+    elf = TARGETS[target].elf
+    if elf is None or elf.architecture not in ARCHITECTURES:
+        raise StackUnknown("no call-graph reader for target %s's images" % target)
+    return ARCHITECTURES[elf.architecture]
+
+
 def read_code(elf_path: Path, target: str) -> dict[int, Function]:
     """The image's functions with their calls and pushes, from ``objdump -d``."""
-    tool = shutil.which(OBJDUMP[target])
+    arch = architecture(target)
+    tool = shutil.which(arch.objdump)
     if tool is None:
-        raise StackUnknown("%s not found (needed to read the call graph)" % OBJDUMP[target])
+        raise StackUnknown("%s not found (needed to read the call graph)" % arch.objdump)
     functions = _functions(elf_path)
     starts = sorted(functions)
-    reader = _read_avr if target == "kilobot" else _read_arm
     listing = subprocess.run([tool, "-d", str(elf_path)],
                              capture_output=True, text=True, check=True).stdout
     instructions = []
@@ -243,8 +271,8 @@ def read_code(elf_path: Path, target: str) -> dict[int, Function]:
         function = _containing(functions, starts, address)
         if function is not None:
             following = instructions[index + 1][0] if index + 1 < len(instructions) else address + 2
-            reader(function, address, mnemonic, operands.split("@")[0].strip() if target == "capbot" else operands,
-                   following)
+            arch.reader(function, address, mnemonic,
+                        operands.split(arch.comment)[0].strip() if arch.comment else operands, following)
     return functions
 
 
@@ -277,11 +305,11 @@ class CallGraph:
         if function.moves_sp:
             raise StackUnknown("no stack usage data for %s (no .su entry, and its code moves the stack pointer)"
                                % function.name)
-        return function.pushes + (2 if self.target == "kilobot" else 0)
+        return function.pushes + architecture(self.target).call_pushes
 
     def declared(self, function: Function) -> tuple[str, ...] | None:
         """What an indirect call in ``function`` may reach: its own declaration, or, for a
-        static function of the VM core's step (``apply``, ``step_m``: svm_step's code that the
+        static function of the VM core's step (``fire``, ``step_m``: svm_step's code that the
         compiler kept out of line, as arm-none-eabi-gcc -Os does), ``svm_step``'s."""
         if function.name in self.indirect:
             return self.indirect[function.name]
@@ -326,9 +354,10 @@ class CallGraph:
     def program(self) -> int:
         """``main`` plus the deepest interrupt handler (AVR; handlers that do not nest)."""
         total = self.root(MAIN_ROOT)
-        if self.target != "kilobot":
+        names = architecture(self.target).handlers
+        if names is None:
             return total
-        handlers = [f for f in self.functions.values() if AVR_VECTOR.match(f.name)]
+        handlers = [f for f in self.functions.values() if names.match(f.name)]
         for handler in handlers:
             if handler.enables_interrupts:
                 raise StackUnknown("interrupts enabled again in handler %s (they may nest)" % handler.name)
@@ -345,13 +374,14 @@ def measure_stack(elf: str, target: str, indirect: dict[str, tuple[str, ...]] | 
     try:
         graph = CallGraph(target, read_code(Path(elf), target), read_su(paths), dict(indirect or {}))
     except subprocess.CalledProcessError as exc:
-        reason = "%s could not read it (%s)" % (OBJDUMP[target], exc.stderr.strip().splitlines()[-1:])
+        reason = "%s could not read it (%s)" % (architecture(target).objdump, exc.stderr.strip().splitlines()[-1:])
         return Stack(None, None, {"step": reason, "total": reason})
     except StackUnknown as exc:
         return Stack(None, None, {"step": str(exc), "total": str(exc)})
     values: dict[str, int | None] = {}
-    unknown = {}
-    for key, figure in (("step", lambda: graph.root(STEP_ROOT)), ("total", graph.program)):
+    unknown: dict[str, str] = {}
+    figures: tuple[tuple[str, Callable[[], int]], ...] = (("step", lambda: graph.root(STEP_ROOT)), ("total", graph.program))
+    for key, figure in figures:
         try:
             values[key] = figure()
         except StackUnknown as exc:

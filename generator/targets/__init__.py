@@ -1,120 +1,65 @@
-"""The targets ``swarmvm gen --target`` knows: which templates render to which files.
+"""The targets ``swarmvm gen --target`` knows, and what renders them: one registry of records.
 
-A target differs from another only in its templates and the runtime files it ships; the
-tables and image are the same for all. A file entry is (template, output name, keep): output
-names may use ``{name}``; ``keep`` marks user-edited files that are never overwritten."""
+Every module of this package that exports ``TARGET`` (a swarmvm.targets.record.Target) is a
+target, and so is every such module in the folders of the environment variable
+``SWARMVM_TARGET_PATH`` (separated as PATH is): a target is its module, its template folder and
+its docs page (docs/extending.md), registered here by :func:`register` and named nowhere else.
+A target differs from another only in its record: the tables and image are the same for all."""
 
 import dataclasses
-from dataclasses import dataclass, field
-from importlib.abc import Traversable
-from typing import Callable
+import os
+import pkgutil
+import sys
+from collections.abc import Iterator
+from importlib import import_module, util
+from pathlib import Path
+from types import ModuleType
 
 from .. import __version__
 from ..boundary.errors import InputError
 from ..boundary.escape import UnsafeText
 from ..compiler.pipeline import Compiled
-from ..compiler.render import context, render
-from ..compiler.runtime_files import (
-    RUNTIME_C,
-    RUNTIME_CPP,
-    RUNTIME_FORMAT_PY,
-    RUNTIME_LEARN_PY,
-    RUNTIME_PY,
-    RUNTIME_PY_DIR,
-)
-from . import argos, kilobot
-from . import values as target_values
-from .values import runtime_files
+from ..compiler.render import FOLDERS, context, render
+from .record import Target
 
-TemplateFile = tuple[str, str, bool]        # (template, output name, keep)
-RuntimeCopy = tuple[Traversable, str]       # (source path, output name)
+TARGET_PATH = "SWARMVM_TARGET_PATH"
+
+TARGETS: dict[str, Target] = {}
 
 
-@dataclass(frozen=True)
-class Target:
-    description: str
-    templates: tuple[TemplateFile, ...]
-    copies: tuple[RuntimeCopy, ...] = field(default=())
-    learned_templates: tuple[TemplateFile, ...] = field(default=())   # added by --learned-check (docs/learning.md)
-    learned_copies: tuple[RuntimeCopy, ...] = field(default=())
-    prepare: Callable[[Compiled], dict[str, object]] | None = None   # extra template values; InputError if unfit
-    values: Callable[[Compiled], dict[str, object]] | None = None    # template values decided in Python
-    keeps_order: bool = False            # its image keeps the source order (the Python SCT's exact mode)
+def register(target: Target) -> None:
+    """Make ``target`` one of TARGETS, its template folder the one its ``<name>/`` templates
+    are read from; ValueError when another target has its name."""
+    if target.name in TARGETS:
+        raise ValueError("two targets named %r" % target.name)
+    TARGETS[target.name] = target
+    FOLDERS[target.name] = target.template_folder
 
 
-# The Python VM and the image format it reads (swarmvm_vm imports swarmvm_format), and what the
-# apps (python3 -m <name>_app) share: their options and fixed-rate loop.
-PY_RUNTIME_COPIES = ((RUNTIME_PY, "swarmvm_vm.py"), (RUNTIME_FORMAT_PY, "swarmvm_format.py"),
-                     (RUNTIME_PY_DIR / "swarmvm_app.py", "swarmvm_app.py"))
+def module_from_file(path: Path) -> ModuleType:
+    """A target module outside the package, imported by its path (not registered: the registry
+    registers the TARGET of each module it finds)."""
+    spec = util.spec_from_file_location("swarmvm_target_" + path.stem, path)
+    if spec is None or spec.loader is None:
+        raise ImportError("cannot import the target module %s" % path)
+    module = util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
 
 
-def c_copies(*groups: str, folder: str = "") -> tuple[RuntimeCopy, ...]:
-    """The C runtime's files of ``groups`` (target_values.RUNTIME_GROUPS) as copies into ``folder``."""
-    return tuple((RUNTIME_C / n, folder + n) for n in runtime_files(*groups))
+def target_modules() -> Iterator[ModuleType]:
+    """This package's modules, then those of the SWARMVM_TARGET_PATH folders, each in name order."""
+    for info in sorted(pkgutil.iter_modules(__path__), key=lambda i: i.name):
+        yield import_module("%s.%s" % (__name__, info.name))
+    for folder in filter(None, os.environ.get(TARGET_PATH, "").split(os.pathsep)):
+        for path in sorted(Path(folder).glob("*.py")):
+            yield module_from_file(path)
 
 
-# What every C target ships: the VM, Nadzoru 2's C API over it, the canonical trace line.
-C_RUNTIME_GROUPS = ("core", "sct", "trace")
-
-TARGETS = {
-    "python": Target(
-        "Python VM: table module, app module binding the callbacks, controller skeleton, the runtime (stdlib only)",
-        templates=(("python/tables.py.j2", "{name}_tables.py", False),
-                   ("python/app.py.j2", "{name}_app.py", False),
-                   ("python/controller.py.j2", "{name}_controller.py", True)),
-        copies=PY_RUNTIME_COPIES,
-        learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
-        learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),),
-        keeps_order=True),
-    "argos": Target(
-        "ARGoS e-puck controller (C++17): image header, generated CCI_Controller base class, controller skeleton, CMakeLists.txt, example .argos",
-        templates=(("argos/image.hpp.j2", "{name}_image.hpp", False),
-                   ("argos/base.h.j2", "{name}_base.h", False),
-                   ("argos/controller.h.j2", "{name}_controller.h", True),
-                   ("argos/controller.cpp.j2", "{name}_controller.cpp", True),
-                   ("argos/CMakeLists.txt.j2", "CMakeLists.txt", True),
-                   ("argos/experiment.argos.j2", "{name}.argos", True)),
-        copies=tuple((RUNTIME_CPP / n, n) for n in ("swarmvm.hpp", "swarmvm_argos.hpp", "swarmvm_argos_controller.hpp",
-                                                     "swarmvm_argos_report.hpp", "swarmvm_argos.cmake")),
-        prepare=argos.prepare),
-    "pipuck": Target(
-        "Pi-puck controller (Python): tables, the Python VM, robot adapters (real and --sim), fixed-rate app, controller skeleton",
-        templates=(("python/tables.py.j2", "{name}_tables.py", False),
-                   ("pipuck/app.py.j2", "{name}_app.py", False),
-                   ("pipuck/controller.py.j2", "{name}_controller.py", True)),
-        copies=PY_RUNTIME_COPIES + ((RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"),),
-        keeps_order=True),
-    "c": Target(
-        "C VM (C99, host or microcontroller): tables with the image as a const array, dispatch glue, control loop, Makefile, controller skeleton",
-        templates=(("c/tables.h.j2", "{name}_tables.h", False),
-                   ("c/tables.c.j2", "{name}_tables.c", False),
-                   ("c/main.c.j2", "{name}_main.c", False),
-                   ("c/Makefile.j2", "Makefile", False),
-                   ("c/controller.c.j2", "{name}_controller.c", True)),
-        copies=c_copies(*C_RUNTIME_GROUPS),
-        values=target_values.c_values),
-    "kilobot": Target(
-        "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, new images streamed over messages, Makefile, controller skeleton",
-        templates=(("c/tables.h.j2", "{name}_tables.h", False),
-                   ("kilobot/tables.c.j2", "{name}_tables.c", False),
-                   ("kilobot/app.h.j2", "{name}_app.h", False),
-                   ("kilobot/app.c.j2", "{name}_app.c", False),
-                   ("kilobot/Makefile.j2", "Makefile", False),
-                   ("kilobot/controller.c.j2", "{name}_controller.c", True)),
-        copies=c_copies(*C_RUNTIME_GROUPS, "stream", "kilobot", "kilobot_eeprom", "learn"),
-        prepare=kilobot.prepare, values=target_values.kilobot_values),
-    "capbot": Target(
-        "CapBot application (Zephyr, nRF52840): CMakeLists.txt, prj.conf, main stepping the VM every 100 ms, tables, controller skeleton on the CapBot API",
-        templates=(("capbot/CMakeLists.txt.j2", "CMakeLists.txt", False),
-                   ("capbot/prj.conf.j2", "prj.conf", False),
-                   ("capbot/learned.conf.j2", "learned.conf", False),
-                   ("capbot/main.c.j2", "src/main.c", False),
-                   ("c/tables.h.j2", "src/{name}_tables.h", False),
-                   ("c/tables.c.j2", "src/{name}_tables.c", False),
-                   ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
-        copies=c_copies(*C_RUNTIME_GROUPS, "logic_page", "learn", "store_zephyr", folder="src/"),
-        values=target_values.capbot_values),
-}
+for _module in target_modules():
+    if isinstance(getattr(_module, "TARGET", None), Target):
+        register(_module.TARGET)
 
 
 def generate(compiled: Compiled, target: str, **options: object) -> dict[str, tuple[bytes, bool]]:
@@ -124,7 +69,7 @@ def generate(compiled: Compiled, target: str, **options: object) -> dict[str, tu
     if spec.keeps_order:
         compiled = dataclasses.replace(compiled, image=compiled.ordered_image)
     try:
-        extra = spec.prepare(compiled) if spec.prepare else {}
+        extra = spec.rules(compiled) if spec.rules else {}
     except InputError as error:         # refused for this target only: say which
         raise InputError(error.file, error.key, "target %s: %s" % (target, error.message), error.where)
     if spec.values:
@@ -142,7 +87,19 @@ def generate(compiled: Compiled, target: str, **options: object) -> dict[str, tu
             raise InputError(compiled.model.source, "--target", "target %s: %s: %s" % (target, rel, error))
     for source, output in copies:
         files[output.format(name=name)] = (copy_banner(output) + source.read_bytes(), False)
+    _refuse_case_twins(compiled, target, files)
     return files
+
+
+def _refuse_case_twins(compiled: Compiled, target: str, files: dict[str, tuple[bytes, bool]]) -> None:
+    """InputError when two output names differ only by case: one file on the case-insensitive
+    file systems of Windows and macOS, so a checkout or a build there would lose one."""
+    seen: dict[str, str] = {}
+    for rel in sorted(files):
+        other = seen.setdefault(rel.lower(), rel)
+        if other != rel:
+            raise InputError(compiled.source, "--name", "target %s: the files %s and %s differ only by case, one file "
+                             "on Windows and macOS: give another name with --name" % (target, other, rel))
 
 
 def copy_banner(output: str) -> bytes:

@@ -1,15 +1,74 @@
-"""What the Kilobot target (templates/kilobot/) needs computed and checked before rendering.
+"""The Kilobot target (templates/kilobot/, docs/robots/kilobot.md): a kilolib application for the
+ATmega328P, its messages, its limits and how footprint reads its images.
 
 A Kilobot message carries 9 bytes: the application sends a public event's message name
-(generator/compiler/naming.py) as its payload, cut to 9 characters, so two messages that agree on those
-characters are refused before anything is written."""
+(swarmvm.compiler.naming) as its payload, cut to 9 characters, so two messages that agree on
+those characters are refused before anything is written, for this target only."""
 
-from ..compiler.naming import event_names, kilobot_messages
+from ..boundary.errors import InputError
+from ..compiler.model import Model
+from ..compiler.naming import EventNames, event_names
+from ..compiler.pipeline import Compiled
+from ..compiler.runtime_files import TEMPLATES
+from .record import Elf, RobotLimits, Target
+from .values import C_RUNTIME_GROUPS, c_copies, features, headers, sources
+
+KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
+# 32 KB of flash minus the bootloader at 0x7000; 2 KB of SRAM, 1 KB of it left to the stack
+LIMITS = RobotLimits("Kilobot", flash=28672, sram=2048, min_stack=1024)
 
 
-def prepare(compiled):
-    """Template values of the Kilobot target: ``messages`` (event index -> its message name, for
-    public events) and ``wires`` (the distinct message names, in event order)."""
+def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:
+    """The distinct message names of a Kilobot application, in event order; InputError when two
+    of them agree on the 9 bytes a Kilobot message carries."""
+    seen: dict[str, EventNames] = {}
+    for e in events:
+        if e.message is None:
+            continue
+        first = seen.setdefault(e.message[:KILOBOT_MESSAGE_BYTES], e)
+        if first.message != e.message:
+            raise InputError(model.source, "events", "%s and %s use the messages %r and %r, one Kilobot message %r "
+                             "(a message carries the first %d characters of the name): rename one"
+                             % (first.const, e.const, first.message, e.message, e.message[:KILOBOT_MESSAGE_BYTES],
+                                KILOBOT_MESSAGE_BYTES), "event %s" % e.const)
+    return list(dict.fromkeys(e.message for e in events if e.message is not None))
+
+
+def rules(compiled: Compiled) -> dict[str, object]:
+    """The Kilobot's naming rule, and what it gives the templates: ``messages`` (event index ->
+    its message name, for public events) and ``wires`` (the distinct message names, in event order)."""
     events = event_names(compiled.model)
     wires = kilobot_messages(compiled.model, events)
     return dict(messages={e.index: e.message for e in events if e.message is not None}, wires=wires)
+
+
+def values(compiled: Compiled) -> dict[str, object]:
+    """The runtime its Makefile compiles (more with ``STREAM=1`` and ``LEARNED=1``), the features
+    of each build (the streaming one matches a received image's events by name), and each public
+    event's message payload (event index -> the first KILOBOT_MESSAGE_BYTES characters of its
+    message name)."""
+    probabilistic = compiled.tables.probs is not None
+    return dict(runtime_sources=sources("core", "kilobot"), runtime_headers=headers("core", "kilobot"),
+                stream_sources=sources("stream"), learned_sources=sources("learn"),
+                features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),
+                payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES]
+                          for e in event_names(compiled.model) if e.message is not None})
+
+
+TARGET = Target(
+    "kilobot",
+    "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, new images streamed over messages, Makefile, controller skeleton",
+    templates=(("c/tables.h.j2", "{name}_tables.h", False),
+               ("kilobot/tables.c.j2", "{name}_tables.c", False),
+               ("kilobot/app.h.j2", "{name}_app.h", False),
+               ("kilobot/app.c.j2", "{name}_app.c", False),
+               ("kilobot/Makefile.j2", "Makefile", False),
+               ("kilobot/controller.c.j2", "{name}_controller.c", True)),
+    template_folder=TEMPLATES / "kilobot",
+    page="robots/kilobot.md",
+    copies=c_copies(*C_RUNTIME_GROUPS, "stream", "kilobot", "kilobot_eeprom", "learn"),
+    rules=rules, values=values,
+    build=("make", "-s", "{name}.elf"),     # with KILOLIB=<kilolib's build folder>
+    limits=LIMITS,
+    elf=Elf("EM_AVR", architecture="avr", emulator="kilobot_board", make_rule="{build}/kilobot/{name}.elf",
+            platform_runtime=("swarmvm_kilobot.c",)))

@@ -1,19 +1,22 @@
-"""What the C-family targets' build files and glue are told, decided once here, not in templates.
+"""What the C-family targets (c, kilobot, capbot) share in their build files and glue, decided
+once here, not in templates.
 
 The C runtime ships as groups of files (a header and its source); a target copies some groups
-(swarmvm.targets) and its build file compiles some of them, and both lists come from
-:data:`RUNTIME_GROUPS`. The VM features a generated program compiles in (swarmvm.h's
+(:func:`c_copies`, in its record) and its build file compiles some of them, and both lists come
+from :data:`RUNTIME_GROUPS`. The VM features a generated program compiles in (swarmvm.h's
 ``SVM_WITH_*``) follow from what the generated code calls, decided by :func:`features` for
-every target that sets them. A Kilobot message's payload is cut to the 9 bytes kilolib carries
-here too. Templates only write these values out."""
+every target that sets them. Templates only write these values out."""
 
 from collections.abc import Mapping
 
-from ..compiler.naming import KILOBOT_MESSAGE_BYTES, event_names
-from ..compiler.pipeline import Compiled
+from ..compiler.runtime_files import RUNTIME_C
+from .record import RuntimeCopy
 
 # The C runtime's files by the part they implement, each in the order builds list them.
 RUNTIME_GROUPS: Mapping[str, tuple[str, ...]] = {
+    # what swarmvm.h and swarmvm.c include, written by scripts/format_headers.py: the format's
+    # numbers, and the host build's checksum tables
+    "format": ("swarmvm_format.h", "swarmvm_crc_tables.h"),
     "core": ("swarmvm.h", "swarmvm.c"),
     "sct": ("swarmvm_sct.h", "swarmvm_sct.c"),                     # Nadzoru 2's C API
     "trace": ("swarmvm_trace.h",),
@@ -27,6 +30,10 @@ RUNTIME_GROUPS: Mapping[str, tuple[str, ...]] = {
     "store_zephyr": ("swarmvm_store_zephyr.h", "swarmvm_store_zephyr.c"),
 }
 
+# What every C target ships: the VM (with the format headers it includes), Nadzoru 2's C API over
+# it, the canonical trace line.
+C_RUNTIME_GROUPS = ("format", "core", "sct", "trace")
+
 # swarmvm.h's features (SVM_WITH_<name>), in the order it declares them.
 FEATURES = ("BINDINGS", "NAMES", "FIRST", "WEIGHTED", "LEARNED")
 
@@ -34,6 +41,11 @@ FEATURES = ("BINDINGS", "NAMES", "FIRST", "WEIGHTED", "LEARNED")
 def runtime_files(*groups: str) -> tuple[str, ...]:
     """The files of ``groups``, in that order."""
     return tuple(name for group in groups for name in RUNTIME_GROUPS[group])
+
+
+def c_copies(*groups: str, folder: str = "") -> tuple[RuntimeCopy, ...]:
+    """The C runtime's files of ``groups`` as a target's copies into ``folder``."""
+    return tuple((RUNTIME_C / n, folder + n) for n in runtime_files(*groups))
 
 
 def sources(*groups: str) -> list[str]:
@@ -57,28 +69,3 @@ def features(probabilistic: bool, names: bool) -> list[tuple[str, int]]:
     if not names:
         chosen["NAMES"] = 0
     return [(feature, chosen[feature]) for feature in FEATURES if feature in chosen]
-
-
-def c_values(compiled: Compiled) -> dict[str, object]:
-    """The c target's Makefile: the runtime it compiles (the core and Nadzoru's C API)."""
-    return dict(runtime_sources=sources("core", "sct"), runtime_headers=headers("core", "sct"))
-
-
-def kilobot_values(compiled: Compiled) -> dict[str, object]:
-    """The Kilobot target: the runtime its Makefile compiles (more with ``STREAM=1`` and
-    ``LEARNED=1``), the features of each build (the streaming one matches a received image's
-    events by name), and each public event's message payload (event index -> the first
-    KILOBOT_MESSAGE_BYTES characters of its message name)."""
-    probabilistic = compiled.tables.probs is not None
-    return dict(runtime_sources=sources("core", "kilobot"), runtime_headers=headers("core", "kilobot"),
-                stream_sources=sources("stream"), learned_sources=sources("learn"),
-                features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),
-                payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES]
-                          for e in event_names(compiled.model) if e.message is not None})
-
-
-def capbot_values(compiled: Compiled) -> dict[str, object]:
-    """The CapBot's CMakeLists.txt: the runtime it compiles (more with ``SVM_LEARNED``, the store
-    on Zephyr's flash last) and its features (main.c matches the logic page's events by name)."""
-    return dict(runtime_sources=sources("core", "logic_page"), learned_sources=sources("learn"),
-                store_sources=sources("store_zephyr"), features=features(compiled.tables.probs is not None, names=True))

@@ -1,8 +1,9 @@
 """`swarmvm gen --target c` and `--target kilobot`: deterministic output, kept skeletons, and
 programs that build and behave: the c target's control loop on the host, a controller written
 against Nadzoru's C API (SCT_*) printing the reference trace, and a Kilobot application for
-every corpus supervisor built by its generated Makefile against the real kilolib, within 28,672
-bytes of flash and 1 KB of stack room, running in simavr (the Kilobot board)."""
+every corpus supervisor built by its generated Makefile against the real kilolib, within the
+Kilobot's flash and stack room (its target record's limits), running in simavr (the Kilobot board).
+Each output is built by its record's build command (tests/target_builds.py)."""
 
 import re
 import subprocess
@@ -14,10 +15,12 @@ from conformance.cases import SUPERVISORS, Run, batch, reference, supervisor_yam
 from corrupted import corrupt_compiled_in_image
 from kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.targets import TARGETS
+from target_builds import build_in_place
 
 EXAMPLE = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
-KILOBOT_FLASH, KILOBOT_SRAM, MIN_STACK = 28672, 2048, 1024
+KILOBOT = TARGETS["kilobot"].limits
 
 
 def gen(path, target, outdir, name):
@@ -42,8 +45,7 @@ def test_generation_is_deterministic_and_keeps_the_controller(target, tmp_path):
 
 def test_c_target_builds_and_runs_with_its_makefile(tmp_path):
     gen(EXAMPLE, "c", tmp_path, "energy_worker")
-    subprocess.run(["make", "-s", "CFLAGS=%s -O2 -DSVM_STEPS=200" % " ".join(STRICT)], cwd=tmp_path, check=True,
-                   capture_output=True)
+    build_in_place(TARGETS["c"], tmp_path, "energy_worker", "CFLAGS=%s -O2 -DSVM_STEPS=200" % " ".join(STRICT)).check_returncode()
     assert subprocess.run([str(tmp_path / "energy_worker")], timeout=10).returncode == 0
     assert subprocess.run([str(tmp_path / "energy_worker"), "1000"], timeout=10).returncode == 0
     refused = subprocess.run([str(tmp_path / "energy_worker"), "ten"], capture_output=True, text=True, timeout=10)
@@ -52,7 +54,7 @@ def test_c_target_builds_and_runs_with_its_makefile(tmp_path):
 
 def test_c_program_without_a_step_count_says_it_runs_until_stopped(tmp_path):
     gen(EXAMPLE, "c", tmp_path, "energy_worker")
-    subprocess.run(["make", "-s"], cwd=tmp_path, check=True, capture_output=True)
+    build_in_place(TARGETS["c"], tmp_path, "energy_worker").check_returncode()
     proc = subprocess.Popen([str(tmp_path / "energy_worker")], stderr=subprocess.PIPE, text=True)
     try:
         line = proc.stderr.readline()
@@ -128,8 +130,8 @@ def kilobot_build(path, tmp_path, stream=False):
     (with the image receiver: `make STREAM=1`)."""
     name = path.rsplit("/", 1)[-1][:-5]
     gen(path, "kilobot", tmp_path, name)
-    subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
-                    *(["STREAM=1"] if stream else []), name + ".elf"], cwd=tmp_path, check=True, capture_output=True, text=True)
+    build_in_place(TARGETS["kilobot"], tmp_path, name, "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
+                   *(["STREAM=1"] if stream else [])).check_returncode()
     return tmp_path / (name + ".elf")
 
 
@@ -144,8 +146,9 @@ def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
     elf = kilobot_build(path, tmp_path, stream)
     sizes = dict((k, int(v)) for k, v in re.findall(r"^\.(text|data|bss)\s+(\d+)",
                  subprocess.run(["avr-size", "-A", str(elf)], capture_output=True, text=True).stdout, re.M))
-    assert sizes["text"] + sizes.get("data", 0) <= KILOBOT_FLASH
-    assert KILOBOT_SRAM - sizes.get("data", 0) - sizes.get("bss", 0) >= MIN_STACK
+    assert KILOBOT is not None
+    assert sizes["text"] + sizes.get("data", 0) <= KILOBOT.flash
+    assert KILOBOT.sram - sizes.get("data", 0) - sizes.get("bss", 0) >= KILOBOT.min_stack
     run = board.run(elf, ticks=40, read="last_step")
     # Started by RUN, the VM steps at every kilolib tick to the end (last_step: the tick of the
     # runtime's last step), and setup never signalled a refused image.
@@ -156,7 +159,7 @@ def test_kilobot_application_fits_and_runs(path, stream, tmp_path):
 def test_a_corrupted_compiled_in_image_is_refused_at_start_up_on_the_host(tmp_path):
     gen(EXAMPLE, "c", tmp_path, "energy_worker")
     corrupt_compiled_in_image(tmp_path / "energy_worker_tables.c")
-    subprocess.run(["make", "-s"], cwd=tmp_path, check=True, capture_output=True)
+    build_in_place(TARGETS["c"], tmp_path, "energy_worker").check_returncode()
     run = subprocess.run([str(tmp_path / "energy_worker"), "10"], capture_output=True, text=True, timeout=10)
     assert run.returncode == 1 and run.stdout == ""
     assert run.stderr == ("%s: the compiled-in table image was refused (swarmvm error 4: its checksum does not "
@@ -172,8 +175,7 @@ def test_a_corrupted_compiled_in_image_halts_the_kilobot_in_red(tmp_path):
     name = "energy_worker"
     gen(EXAMPLE, "kilobot", tmp_path, name)
     corrupt_compiled_in_image(tmp_path / (name + "_tables.c"))
-    subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), name + ".elf"], cwd=tmp_path, check=True,
-                   capture_output=True)
+    build_in_place(TARGETS["kilobot"], tmp_path, name, "KILOLIB=%s" % kilolib_or_skip()).check_returncode()
     run = board.run(tmp_path / (name + ".elf"), ticks=40)
     assert run.end[:1] == (40,)
     colours = [colour for _, colour in run.leds]      # kilolib's start-up colours, then set-up's
@@ -197,12 +199,11 @@ def test_awkward_names_compile_for_the_kilobot_and_the_host(stem, tmp_path):
         out = tmp_path / ("kilobot_stream" if stream else "kilobot")
         subprocess.run(["swarmvm", "gen", str(model), "--target", "kilobot", "-o", str(out)], check=True,
                        capture_output=True)
-        build = subprocess.run(["make", "-s", "KILOLIB=%s" % kilolib_or_skip(), "CPPFLAGS=-Wextra -Werror -pedantic",
-                                *(["STREAM=1"] if stream else []), name + ".elf"], cwd=out, capture_output=True, text=True)
+        build = build_in_place(TARGETS["kilobot"], out, name, "KILOLIB=%s" % kilolib_or_skip(),
+                               "CPPFLAGS=-Wextra -Werror -pedantic", *(["STREAM=1"] if stream else []))
         assert build.returncode == 0 and (out / (name + ".elf")).is_file(), build.stderr
     host = tmp_path / "c"
     subprocess.run(["swarmvm", "gen", str(model), "--target", "c", "-o", str(host)], check=True, capture_output=True)
-    build = subprocess.run(["make", "-s", "CFLAGS=%s -O2 -DSVM_STEPS=20" % " ".join(STRICT)], cwd=host,
-                           capture_output=True, text=True)
+    build = build_in_place(TARGETS["c"], host, name, "CFLAGS=%s -O2 -DSVM_STEPS=20" % " ".join(STRICT))
     assert build.returncode == 0, build.stderr
     assert subprocess.run([str(host / name)], timeout=10).returncode == 0

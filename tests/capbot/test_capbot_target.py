@@ -16,6 +16,7 @@ from capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS
 from checkout import ROOT
 from corrupted import corrupt_compiled_in_image
+from target_builds import image_path, make_images
 
 pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 
@@ -23,7 +24,8 @@ EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
                   "src/energy_worker_tables.h", "src/energy_worker_tables.c",
-                  "src/energy_worker_controller.c", "src/swarmvm.h", "src/swarmvm.c",
+                  "src/energy_worker_controller.c", "src/swarmvm_format.h", "src/swarmvm_crc_tables.h",
+                  "src/swarmvm.h", "src/swarmvm.c",
                   "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/swarmvm_logic_page.h",
                   "src/swarmvm_logic_page.c", "learned.conf"} | {
                   "src/swarmvm_%s.%s" % (m, x) for m in ("learn", "learn_store", "store", "store_zephyr") for x in "ch"}
@@ -99,9 +101,8 @@ def test_every_source_compiles_without_warning(app, compiler, learned, tmp_path)
 
 
 def build_with_make(build, name):
-    elf = build / "capbot" / ("%s.elf" % name)
-    subprocess.run(["make", "-s", "-C", str(ROOT), "BUILD=%s" % build, str(elf)], check=True,
-                   capture_output=True, text=True)
+    elf = image_path(build, "capbot", name)
+    make_images(build, [elf])
     return elf
 
 

@@ -5,10 +5,10 @@ and how the tests declare its indirect calls (mk/capbot.mk's CAPBOT_INDIRECT).""
 
 import re
 import shutil
-import subprocess
 from pathlib import Path
 
 from checkout import ROOT
+from target_builds import image_path, make_images
 
 DEEPER_ARRAY = 300
 DEEPER = """
@@ -34,7 +34,7 @@ def capbot_indirect() -> list[str]:
 
 
 def example(build: Path) -> Path:
-    return build / "capbot" / "energy_worker.elf"
+    return image_path(build, "capbot", "energy_worker")
 
 
 def rebuilt(build: Path, folder: Path, check_body: str | None = None, cflags: str = "") -> Path:
@@ -46,6 +46,5 @@ def rebuilt(build: Path, folder: Path, check_body: str | None = None, cflags: st
         text = controller.read_text()
         body = text.index(CHECK) + len(CHECK)
         controller.write_text(text[:body] + check_body + text[text.index("}\n", body):])
-    subprocess.run(["make", "-s", "-C", str(ROOT), "BUILD=%s" % folder, "CAPBOT_CFLAGS=%s" % cflags,
-                    str(example(folder))], check=True, capture_output=True, text=True)
+    make_images(folder, [example(folder)], "CAPBOT_CFLAGS=%s" % cflags)
     return example(folder)

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from checkout import EXAMPLE, ROOT
 from swarmvm import api
+from target_builds import image_path, make_images, measured_targets
 
 NAMES = ("energy_worker", "network_worker")
 BALLAST_FLASH, BALLAST_RAM = 600, 100
@@ -24,10 +25,9 @@ __attribute__((constructor)) static void ballast(void) { ballast_ram[0] = pgm_re
 
 
 def build_images(root: Path) -> None:
-    """<root>/<target>/<name>.elf for both targets and NAMES, by the project's make rules."""
-    targets = ["%s/%s/%s.elf" % (root, target, name) for target in ("capbot", "kilobot") for name in NAMES]
-    subprocess.run(["make", "-s", "-C", str(ROOT), "BUILD=%s" % root, *targets], check=True,
-                   capture_output=True, text=True)
+    """<root>/<target>/<name>.elf for every measured target (capbot, kilobot) and NAMES, by the
+    project's make rules (their records' elf.make_rule)."""
+    make_images(root, [image_path(root, target, name) for target in measured_targets() for name in NAMES])
 
 
 def build_larger(root: Path, folder: Path) -> Path:
@@ -97,7 +97,7 @@ def _make(folder: Path) -> Path:
 
 
 def elf(build: Path, target: str, name: str) -> Path:
-    return build / target / ("%s.elf" % name)
+    return image_path(build, target, name)
 
 
 def swarmvm_footprint(*args, cwd=None) -> subprocess.CompletedProcess:

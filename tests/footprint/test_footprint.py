@@ -106,7 +106,7 @@ def test_the_runtimes_source_sizes_are_an_option(build, tmp_path):
     assert result.returncode == 0, result.stderr
     assert "## Source size" in result.stdout and "| C++ VM (published) | 15699 |" in result.stdout
     data = json.loads((tmp_path / "f.json").read_text())
-    assert "Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py)" in data["source_bytes"]
+    assert "Python VM (runtime_py/swarmvm_vm.py + swarmvm_format.py + swarmvm_step_source.py)" in data["source_bytes"]
 
 
 @pytest.mark.parametrize("option, reason", [

@@ -85,7 +85,7 @@ def test_static_ram_plus_stack_is_checked_against_the_sram(build):
     row = report.rows[0]
     sram = row.values["ram"] + row.values["stack"] - 1          # one byte short
     small = api.footprint_report([str(example(build))], indirect=list(KILOBOT_INDIRECT),
-                                 limits=Limits(kilobot_sram=sram, kilobot_min_stack=0))
+                                 limits=Limits().replaced("kilobot", sram=sram, min_stack=0))
     assert small.failures() == ["kilobot/energy_worker: static RAM %d B + worst-case stack %d B = %d B exceeds the "
                                 "Kilobot's %d B SRAM" % (row.values["ram"], row.values["stack"],
                                                          sram + 1, sram)]

@@ -1,12 +1,14 @@
-"""Message codes and message collisions (generator/compiler/naming.py), pinned by known answers: mutants of
-the FNV-1a constants, of the 16-bit fold and of the ARGoS and Kilobot collision checks survived
+"""Message codes and message collisions (generator/compiler/naming.py, generator/targets/argos.py
+and kilobot.py), pinned by known answers: mutants of the FNV-1a constants, of the 16-bit fold and of the ARGoS and Kilobot collision checks survived
 every other test (issue 29, docs/mutation.md)."""
 
 import pytest
 
 from swarmvm.boundary.errors import InputError
 from swarmvm.compiler.model import Model
-from swarmvm.compiler.naming import KILOBOT_MESSAGE_BYTES, argos_names, event_names, fnv1a, kilobot_messages, message_code
+from swarmvm.compiler.naming import event_names, fnv1a, message_code
+from swarmvm.targets.argos import argos_names
+from swarmvm.targets.kilobot import KILOBOT_MESSAGE_BYTES, kilobot_messages
 
 
 def public_model(*events):

@@ -8,7 +8,9 @@ import pytest
 
 from swarmvm.boundary.errors import InputError
 from swarmvm.compiler.model import Model
-from swarmvm.compiler.naming import MAX_MODEL_NAME, EventNames, argos_names, event_names, file_stem, kilobot_messages, model_identifier
+from swarmvm.compiler.naming import MAX_MODEL_NAME, EventNames, event_names, file_stem, model_identifier
+from swarmvm.targets.argos import argos_names
+from swarmvm.targets.kilobot import kilobot_messages
 
 
 @pytest.mark.parametrize("stem,prefix", [("svm_sct", "svm"), ("Kilo_x", "Kilo"), ("SCT_model", "SCT")])

@@ -1,11 +1,12 @@
-"""What the build files compile and the glue carries is decided in Python (swarmvm.targets.values):
-a build names only runtime files its target ships, every C target shares one feature rule, and a
-Kilobot message's payload is as long as swarmvm.compiler.naming says."""
+"""What the build files compile and the glue carries is decided in Python (the target records'
+``values``, swarmvm.targets.values for what the C targets share): a build names only runtime files
+its target ships, every C target shares one feature rule, and a Kilobot message's payload is as
+long as swarmvm.targets.kilobot says."""
 
 import pytest
 
 from conformance.cases import supervisor_yaml
-from swarmvm.targets import values as target_values
+from swarmvm.targets import kilobot as kilobot_target
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import TARGETS, generate
 
@@ -45,9 +46,9 @@ def test_the_kilobot_and_capbot_builds_share_one_feature_rule(tmp_path):
 
 
 def test_a_kilobot_message_carries_the_first_message_bytes_of_its_name(tmp_path, monkeypatch):
-    """Cut in Python to naming's length, the one the collision rule (naming.kilobot_messages) uses:
+    """Cut in Python to the record's length, the one its collision rule (kilobot_messages) uses:
     a template that cut it again, to its own length, would show when that length changes."""
     compiled = _model(tmp_path, ["a_long_message_name"])
     assert '{EV_a_long_message_name, 0, "a_long_me"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()
-    monkeypatch.setattr(target_values, "KILOBOT_MESSAGE_BYTES", 5)
+    monkeypatch.setattr(kilobot_target, "KILOBOT_MESSAGE_BYTES", 5)
     assert '{EV_a_long_message_name, 0, "a_lon"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()

@@ -16,11 +16,12 @@ import os
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
-from ...compiler.naming import KILOBOT_MESSAGE_BYTES
+from ...targets.kilobot import KILOBOT_MESSAGE_BYTES
 
 SOURCE = resources.files(__name__) / "kilobot_board.c"
 SIMAVR_INCLUDE = Path("/usr/include/simavr")
@@ -85,19 +86,19 @@ class Message:
 class Run:
     """What one run showed: the image's USART0 lines, the messages sent to the robot (``rx``)
     and by it (``tx``), collisions, where it ended (kilo_ticks, cycles, why) and the EEPROM."""
-    lines: list = field(default_factory=list)
-    rx: list = field(default_factory=list)
-    tx: list = field(default_factory=list)
+    lines: list[str] = field(default_factory=list)
+    rx: list[Message] = field(default_factory=list)
+    tx: list[Message] = field(default_factory=list)
     collisions: int = 0
-    leds: list = field(default_factory=list)        # (tick, set_color value) on each change
-    end: tuple = ()
+    leds: list[tuple[int, int]] = field(default_factory=list)        # (tick, set_color value) on each change
+    end: tuple[int, int, str] | tuple[()] = ()
     ram: int | None = None                          # the ``read`` variable at the end
     stack: int | None = None                        # bytes of stack used at most (``paint_stack``)
-    steps: list = field(default_factory=list)       # cycles of each svm_step call (``step_pc``)
+    steps: list[int] = field(default_factory=list)  # cycles of each svm_step call (``step_pc``)
     eeprom: bytes = b""
 
 
-def _message(fields: list) -> Message:
+def _message(fields: list[str]) -> Message:
     return Message(int(fields[1]), int(fields[2], 16), bytes.fromhex(fields[3]), fields[4:] != ["badcrc"])
 
 
@@ -127,9 +128,10 @@ def parse(output: str) -> Run:
     return run
 
 
-def run(elf: Path, ticks: int | None, messages=(), start_tick: int = 1, eeprom: bytes | None = None,
-        read: str | None = None, paint_stack: bool = False, timeout: int = 600, cycles: int | None = None,
-        step_pc: int | None = None, check_pcs=(), script=None) -> Run:
+def run(elf: Path, ticks: int | None, messages: Iterable[tuple[int, int, bytes]] = (), start_tick: int = 1,
+        eeprom: bytes | None = None, read: str | None = None, paint_stack: bool = False, timeout: int = 600,
+        cycles: int | None = None, step_pc: int | None = None, check_pcs: Iterable[int] = (),
+        script: Iterable[bytes] | None = None) -> Run:
     """Run ``elf`` until kilo_ticks reaches ``ticks`` (None: until the image stops the CPU, for
     programs without kilolib, which get no messages). ``messages``: (tick, type, 9 data bytes),
     sent in order once kilo_ticks reaches their tick, after the RUN message at ``start_tick``;
