@@ -35,7 +35,7 @@ from .compiler import pipeline
 from .compiler.model import Model
 from .compiler.naming import file_stem
 from .compiler.pipeline import Compiled, compile_inputs, compile_spec
-from .compiler.runtime_files import python_vm
+from .compiler.runtime_files import python_app, python_vm
 from .compiler.user_files import Drift, drift
 from .footprint import measure as fp
 from .footprint import report as fp_report
@@ -54,22 +54,24 @@ from .readers import event_script as script
 from .readers.event_script import read_script_rows
 from .readers.synth_script import read_synth_script
 from .targets import TARGETS, generate
+from .compat.switch import VARIANTS, Switch, switch_project
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
            "parse_image", "write_image", "Generated", "generate_target", "learned_pairs", "script_lines", "make_script",
            "trace", "measure_footprint", "footprint_report", "check_properties", "equivalent", "export", "write_export",
-           "synthesise_models", "inspect", "TARGETS", "DEFAULT_MAX_STATES", "TRANSITIONS_PER_STATE"]
+           "synthesise_models", "inspect", "compat_switch", "TARGETS", "DEFAULT_MAX_STATES", "TRANSITIONS_PER_STATE"]
 
 if TYPE_CHECKING:   # mypy reads the source tree, where the runtime is the folder runtime_py/
+    from runtime_py import swarmvm_vm as _vm
     from runtime_py.swarmvm_vm import Image
-
-_vm = python_vm()
+else:
+    _vm = python_vm()
 
 # The rules of parameters several functions share (swarmvm.boundary.arguments).
 _NAME = optional(text)
 _TARGET = one_of(TARGETS, "target")
 _MAX_STATES = integer(1)
-_SEED = integer(0, 0xFFFFFFFF)                     # the VM's 32-bit generator (swarmvm.cli.options.SEED)
+_SEED = integer(0, python_app().SEED_MAX)          # the VM's 32-bit generator (swarmvm.cli.options.SEED)
 _SYNTH_FORMATS = ("yaml", "gen")
 
 load = checked(paths=file_names)(pipeline.load)
@@ -110,13 +112,14 @@ def read_image(path: str) -> "Image":
 
 @checked(paths=file_names, target=optional(_TARGET), name=_NAME)
 def check(paths: Sequence[str], target: str | None = None, name: str | None = None) -> tuple[list[CheckRow], list[str]]:
-    """Validate each file (supervisor or ``.svm`` image): its row, and the models' warnings.
+    """Validate each file (supervisor or ``.svm`` image): its row (the file named as given, so that
+    two roles' supervisor.yaml rows differ), and the models' warnings.
     With ``target``, each supervisor must also pass that target's own rules (its code is
     rendered in memory, as ``gen`` would with ``name``, and nothing is written)."""
     rows: list[CheckRow] = []
     warnings: list[str] = []
     for path in paths:
-        file = Path(path).name
+        file = path
         if path.endswith(".svm"):
             image = read_image(path)
             rows.append(CheckRow(file, image.num_events, image.num_supervisors, len(image.state_defined),
@@ -217,7 +220,7 @@ def _image_of(inputs: Sequence[str]) -> "Image":
 
 
 @checked(inputs=file_names, script_path=file_name, seed=_SEED, input_mode=one_of(_vm.INPUT_MODES, "input mode"),
-         control=one_of(_vm.CONTROL_MODES, "control mode"), policy=one_of(_vm.POLICIES, "policy"))
+         control=one_of(_vm.CONTROL_MODES, "control mode"), policy=one_of(python_app().OPTION_POLICIES, "policy"))
 def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: str = "level",
           control: str = "after-inputs", policy: str = "uniform") -> Iterator[str]:
     """The canonical trace lines of the reference VM replaying an event script, produced as
@@ -348,3 +351,13 @@ def inspect(supervisor: str, traces: Sequence[str], output: str, name: str | Non
         raise InputError("", "compare", "compares exactly two traces, got %d" % len(traces))
     compiled = compile_model([supervisor])
     return write_page(compiled.model, compiled.stem if name is None else name, traces, output, compare, first_step)
+
+
+@checked(project=file_name, variant=optional(one_of(VARIANTS, "variant")))
+def compat_switch(project: str, variant: str | None = None) -> Switch:
+    """Switch the OpenSwarm ARGoS project in the folder ``project`` (the one holding ``src/``)
+    from the published VM to swarmvm's sct.h, editing its build files and includes as they are
+    (swarmvm.compat.switch; docs/compat.md): every changed file written, or none. Run
+    again, it writes nothing. ``variant`` ("default" or "mhsc") overrides the published variant
+    read from the project."""
+    return switch_project(Path(project), variant)

@@ -20,7 +20,7 @@ import math
 from collections.abc import Sequence
 from typing import Any, Callable, Iterable, TypeVar, cast
 
-from .errors import InputError
+from .errors import InputError, verb_scope
 
 F = TypeVar("F", bound=Callable[..., Any])
 Rule = Callable[[str, Any], None]
@@ -42,7 +42,8 @@ def checked(**rules: Rule) -> Callable[[F], F]:
             bound.apply_defaults()
             for name, rule in rules.items():
                 rule(name, bound.arguments[name])
-            return function(*args, **kwargs)
+            with verb_scope():          # what this call reads, no output of it may replace
+                return function(*args, **kwargs)
         return cast(F, wrapper)
     return decorate
 

@@ -52,6 +52,19 @@ def terminal(text: str) -> str:
     return text if text.isprintable() else "".join(c if c.isprintable() else _escape(c) for c in text)
 
 
+# User text in a message (a file name, a key, a token, a value) is cut to this many characters,
+# the cut said: a message stays a line a person reads, whatever a file holds (docs/limits.md).
+MESSAGE_PART_LIMIT = 1000
+MESSAGE_LINE_LIMIT = 5 * MESSAGE_PART_LIMIT     # a whole message line: its four parts and more
+
+
+def bounded(text: str, limit: int = MESSAGE_PART_LIMIT) -> str:
+    """``text``, cut to ``limit`` characters with the cut said when it is longer."""
+    if len(text) <= limit:
+        return text
+    return "%s... (%d more characters cut)" % (text[:limit], len(text) - limit)
+
+
 def comment(text: str) -> str:
     """``text`` inside a comment of C (``/* */`` and ``//``), C++, Python (``#`` and
     docstrings), Make, CMake, YAML or ``.gen``: ASCII that cannot end the comment, with every

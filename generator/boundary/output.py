@@ -5,11 +5,15 @@ or all the old ones, never a mix, and none of swarmvm's own temporary or backup 
 
 1. **check**, changing nothing: no destination may be, or lie below, a symbolic link; a folder
    on the way must be a folder; a file to be written must be absent or a regular file (a folder,
-   a device, a FIFO or a socket is refused, never replaced). A file marked ``keep`` (a controller
+   a device, a FIFO or a socket is refused, never replaced), and neither a file the command read
+   (same device and inode: a hard link or another spelling of the path is the same file) nor
+   in a folder of inputs it read (:func:`swarmvm.boundary.errors.note_read`). A file marked ``keep`` (a controller
    skeleton the user edits) is left alone when it is a regular file.
 2. **stage**: make the missing folders, write each file to a new temporary file beside its
    destination (``.swarmvm-*``, fsynced), and reserve a backup name beside each destination
    that exists. A failure or an interrupt here removes everything staged.
+   A new file's permissions are what the umask leaves of ``rw-rw-rw-``; a replaced file keeps
+   its own.
 3. **commit**: move each file being replaced aside to its backup, rename the new one in, and
    only when all are in delete the backups. A failure here puts back what was replaced and
    removes what was added (and the folders staging made, when empty).
@@ -34,7 +38,7 @@ from pathlib import Path
 from types import FrameType
 from typing import Any, Mapping
 
-from .errors import InputError
+from .errors import InputError, file_kind, was_read
 
 TEMPORARY_PREFIX = ".swarmvm-"
 HELD_SIGNALS = (signal.SIGINT, signal.SIGTERM)
@@ -158,6 +162,9 @@ class _Transaction:
             self._stage_step(str(folder), "mkdir", str(folder))
             self.folders.append(str(folder))
         staged = _Staged(str(destination))
+        # A replaced file keeps its permissions; a new one gets what the umask leaves of rw-rw-rw-,
+        # as any program's new file does (the temporary file is made 0600 whatever the umask).
+        mode = stat.S_IMODE(os.lstat(destination).st_mode) if os.path.lexists(destination) else 0o666 & ~umask()
         if os.path.lexists(destination):
             fd, staged.backup = self._stage_step(staged.destination, "open", str(destination.parent))
             self.staged.append(staged)
@@ -168,7 +175,7 @@ class _Transaction:
         try:
             self._stage_step(staged.destination, "write", fd, data)
             self._stage_step(staged.destination, "fsync", fd)
-            self._stage_step(staged.destination, "chmod", fd, 0o644)
+            self._stage_step(staged.destination, "chmod", fd, mode)
         finally:
             self._do(staged.destination, "close", fd)
 
@@ -218,6 +225,26 @@ class _Transaction:
         return left
 
 
+_UMASK_LOCK = threading.Lock()
+
+
+def umask() -> int:
+    """The process's umask, read without changing it where the system says it (Linux's
+    /proc/self/status); elsewhere set and put back under a lock, so that no two threads of
+    swarmvm race on it."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as status:
+            for line in status:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    with _UMASK_LOCK:
+        current = os.umask(0o022)
+        os.umask(current)
+    return current
+
+
 def write_outputs(outdir: str | Path, files: Mapping[str, tuple[bytes, bool]], option: str = "-o") -> list[str]:
     """Write ``files`` ({path relative to ``outdir``: (bytes, keep)}) into ``outdir`` as one
     transaction (this module's docstring); the paths written, sorted. A destination refused,
@@ -248,16 +275,6 @@ def write_outputs(outdir: str | Path, files: Mapping[str, tuple[bytes, bool]], o
     return [str(destination) for destination, _ in plan]
 
 
-def _kind(mode: int) -> str:
-    """What a file of ``mode`` is, as a phrase ("a folder", "a character device")."""
-    for test, phrase in ((stat.S_ISDIR, "a folder"), (stat.S_ISREG, "a regular file"),
-                         (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-                         (stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket")):
-        if test(mode):
-            return phrase
-    return "an unknown kind of file"
-
-
 def _to_be_written(outdir: Path, rel: Path, keep: bool, option: str) -> bool:
     """Whether ``outdir / rel`` is to be written (False: a kept user file that exists); an
     InputError when it may not be. Checked without following links: ``outdir``, the folders
@@ -269,15 +286,22 @@ def _to_be_written(outdir: Path, rel: Path, keep: bool, option: str) -> bool:
     for depth in range(len(rel.parts) + 1):
         path = outdir.joinpath(*rel.parts[:depth])
         try:
-            mode = os.lstat(path).st_mode
+            info = os.lstat(path)
         except FileNotFoundError:
             return True
         except OSError as exc:
             raise InputError(str(path), option, "cannot write (lstat: %s)" % exc.strerror)
+        mode = info.st_mode
         if stat.S_ISLNK(mode):
             raise InputError(str(path), option, "is a symbolic link: swarmvm does not write through or over one")
         if depth < len(rel.parts) and not stat.S_ISDIR(mode):
-            raise InputError(str(path), option, "is %s, not a folder" % _kind(mode))
+            raise InputError(str(path), option, "is %s, not a folder" % file_kind(mode))
         if depth == len(rel.parts) and not stat.S_ISREG(mode):
-            raise InputError(str(path), option, "is %s, not a file that can be written" % _kind(mode))
+            raise InputError(str(path), option, "is %s, not a file that can be written" % file_kind(mode))
+        if depth == len(rel.parts) and was_read(info):
+            raise InputError(str(path), option, "is an input of this command: writing it would replace what was "
+                             "read; give another output")
+        if depth == len(rel.parts) - 1 and was_read(info):
+            raise InputError(str(path), option, "is a folder of inputs this command read: writing into it would "
+                             "change what it holds; give another output")
     return True

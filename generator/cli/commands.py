@@ -14,27 +14,32 @@ import click
 
 from .. import __version__, api
 from ..boundary import terminal
+from ..boundary.errors import verb_scope
 from ..boundary.escape import markdown
 from ..boundary.output import write_outputs
 from ..boundary.termination import end_verbs_on_sigterm
-from ..compiler.runtime_files import python_vm
+from ..compiler.runtime_files import RUNTIME_CPP, python_app, python_vm
 from ..footprint import budget as fp_budget
 from ..footprint import measure as fp
 from ..footprint import report as fp_report
 from ..footprint.chart import svg_chart
 from ..inspector.page import ROBOT_STEPS, window
 from ..models.export import FORMATS
+from ..compat.switch import VARIANTS as COMPAT_VARIANTS
+from ..targets.kilobot import LIMITS as KILOBOT_LIMITS
 from .options import SEED, FiniteFloat, OneLineErrors
 
 vm = python_vm()
 
 
 def reports_errors(command: Callable[..., Any]) -> Callable[..., Any]:
-    """Turn InputError into the one-line message and exit status 2."""
+    """Turn InputError into the one-line message and exit status 2; what the verb reads, in
+    all the API calls it makes, no output of it may replace (boundary.errors.verb_scope)."""
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
-            return command(*args, **kwargs)
+            with verb_scope():
+                return command(*args, **kwargs)
         except api.InputError as exc:
             terminal.fail(exc)
     return wrapper
@@ -75,7 +80,7 @@ def main(ctx: click.Context) -> None:
 @reports_errors
 def check(files: tuple[str, ...], properties: bool, all_findings: bool, target: str | None, name: str | None,
           max_states: int) -> None:
-    """Validate supervisors (.yaml, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
+    """Validate supervisors (.yaml, .c, .h, .xml, .xmd, .nza, .gen) or table images (.svm) and print their sizes.
 
     Counts are as read from each file, summed over its local supervisors; bytes is the file
     size. A .svm image is checked (magic, version, checksum) and its counts printed."""
@@ -111,7 +116,8 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 @click.option("-t", "--target", type=click.Choice(sorted(api.TARGETS)), required=True,
               help="The robot or language to generate for.")
 @click.option("-o", "--output", "outdir", required=True, help="Directory to write into.")
-@click.option("--name", help="Model name for generated files (default: the input's file stem).")
+@click.option("--name", help="Model name for generated files (default: the input's file stem; for a "
+                             "supervisor.yaml, its folder's name).")
 @click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
               help="Decide the uncontrollable pair YES/NO (e.g. capableTask/notCapableTask) with an "
                    "online classifier on features the application supplies. Repeatable.")
@@ -119,13 +125,16 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...]) -> None:
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
 
-    INPUTS is a supervisor.yaml (Nadzoru 2), or one or more automata that make one set of
-    local supervisors, one each: Nadzoru 2 XML (.xml), IDES (.xmd), Nadzoru (.nza) or
-    libFAUDES (.gen). Generated files are
+    INPUTS is a supervisor.yaml (Nadzoru 2), Nadzoru's C tables (.c, .h) or a table image
+    (.svm), or one or more automata that make one set of local supervisors, one each:
+    Nadzoru 2 XML (.xml), IDES (.xmd), Nadzoru (.nza) or libFAUDES (.gen). Generated files are
     rewritten on every run; a controller skeleton that already exists is never overwritten,
     and when its callbacks no longer match the model a warning names them and a fresh
     skeleton is written beside it as <file>.new."""
     result = api.generate_target(inputs, target, outdir, name=name, learned=learned)
+    if name is None and result.compiled.stem != Path(inputs[0]).stem:
+        terminal.note("named the model %s after the folder of %s (give --name to choose another)"
+                      % (result.compiled.name, inputs[0]))
     _warn(result.compiled.model.warnings)
     _warn(d.message() for d in result.drifts)
     for path in result.written:
@@ -160,7 +169,7 @@ def script(inputs: tuple[str, ...], steps: int, seed: int, density: float) -> No
 @click.option("--control", type=click.Choice(vm.CONTROL_MODES), default="after-inputs", show_default=True,
               help="A controllable event is chosen in every step, after its inputs (after-inputs), or only in a "
                    "step where no uncontrollable event occurred (if-quiet).")
-@click.option("--policy", type=click.Choice(["uniform", "first", "weighted"]), default="uniform", show_default=True,
+@click.option("--policy", type=click.Choice(python_app().OPTION_POLICIES), default="uniform", show_default=True,
               help="How the VM chooses among enabled controllable events.")
 @reports_errors
 def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str, control: str, policy: str) -> None:
@@ -184,11 +193,11 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
               help="Exit with status 1 when a column of a row grew by more than PCT per cent on the baseline.")
 @click.option("--chart", "chart_path", type=click.Path(), help="Also draw flash and RAM per row as an SVG file.")
 @click.option("--runtime-sizes", is_flag=True, help="Also list the runtimes' source sizes (the project's own figures).")
-@click.option("--kilobot-flash", default=28672, show_default=True, type=click.IntRange(0),
+@click.option("--kilobot-flash", default=KILOBOT_LIMITS.flash, show_default=True, type=click.IntRange(0),
               help="Flash a Kilobot image may use (bytes below the bootloader).")
-@click.option("--kilobot-stack", default=1024, show_default=True, type=click.IntRange(0),
-              help="SRAM a Kilobot image must leave for the stack (of 2,048 bytes).")
-@click.option("--vm-limit", default=100000, show_default=True, type=click.IntRange(0),
+@click.option("--kilobot-stack", default=KILOBOT_LIMITS.min_stack, show_default=True, type=click.IntRange(0),
+              help="SRAM a Kilobot image must leave for the stack (of {:,} bytes).".format(KILOBOT_LIMITS.sram))
+@click.option("--vm-limit", default=fp.VM_KPI, show_default=True, type=click.IntRange(0),
               help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
 @click.option("--indirect", multiple=True, metavar="CALLER=TARGET,...",
               help="What an indirect call in CALLER may reach, for the worst-case stack (repeatable); "
@@ -213,7 +222,7 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
         raise click.BadOptionUsage("--fail-on-growth", "growth is measured against a --baseline: give one")
     if budget_path is None and Path(fp_budget.PYPROJECT).is_file():
         budget_path = fp_budget.PYPROJECT
-    limits = fp.Limits(kilobot_flash=kilobot_flash, kilobot_min_stack=kilobot_stack, vm=vm_limit)
+    limits = fp.Limits(vm=vm_limit).replaced("kilobot", flash=kilobot_flash, min_stack=kilobot_stack)
     try:
         report = api.footprint_report(list(elfs), budget=budget_path, baseline=baseline_path,
                                       fail_on_growth=fail_on_growth, limits=limits, indirect=indirect,
@@ -222,9 +231,10 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
         terminal.fail(exc)
     # first, as one transaction: a file that cannot be written ends the command before any output
     # and leaves the other unwritten
-    files = {option: (Path(path).absolute(), text) for option, path, text in (
+    outputs: tuple[tuple[str, str | None, Callable[[], str]], ...] = (
         ("--json", json_path, lambda: fp_report.json_report(report, runtime_sizes)),
-        ("--chart", chart_path, lambda: svg_chart(report))) if path}
+        ("--chart", chart_path, lambda: svg_chart(report)))
+    files = {option: (Path(path).absolute(), text) for option, path, text in outputs if path}
     if files:
         folder = Path(os.path.commonpath([target.parent for target, _ in files.values()]))
         write_outputs(folder, {str(target.relative_to(folder)): (text().encode(), False)
@@ -325,6 +335,33 @@ def inspect(supervisor: str, traces: tuple[str, ...], output: str, name: str | N
     if page.kept < page.total:
         terminal.note("%d of %d robot-steps kept in full (the rest summarised): --first-step %d writes the next page"
                       % (page.kept, page.total, first_step + window(len(traces))))
+
+@main.command("compat-switch")
+@click.argument("project_dir")
+@click.option("--variant", type=click.Choice(COMPAT_VARIANTS), help="The published sct.h the project "
+              "uses (default: read from its src/utility/sct.h, else from its controllers' add_callback calls).")
+@reports_errors
+def compat_switch(project_dir: str, variant: str | None) -> None:
+    """Switch an OpenSwarm ARGoS project from the published VM to swarmvm's sct.h.
+
+    PROJECT_DIR holds src/: its CMakeLists.txt, utility/CMakeLists.txt and the controllers'
+    includes of <utility/sct.h> are edited as they are. Prints the files changed; run again,
+    it changes nothing and says so."""
+    switch = api.compat_switch(project_dir, variant)
+    for path in switch.written:
+        terminal.line(path)
+    if not switch.written:
+        terminal.note("%s is switched already: nothing changed" % project_dir)
+    elif switch.variant is not None:
+        terminal.note("switched to swarmvm's sct.h (%s variant); packed at build time: %s; src/utility/sct.h "
+                      "and sct.cpp are no longer built" % (switch.variant, ", ".join(switch.supervisors) or "none"))
+
+
+@main.command("cmake-dir")
+def cmake_dir() -> None:
+    """Print the folder of swarmvm_argos.cmake and sct.h (what a CMake project includes)."""
+    terminal.line(RUNTIME_CPP)
+
 
 class StudyVerb(click.Group):
     """A verb of the studies (sim, sweep, plot, bounds), whose subcommands (one per study) live in

@@ -9,13 +9,15 @@ of ``swarmvm``'s main group, turns every usage error of every verb (the studies'
 
 import contextlib
 import math
+import sys
 from typing import Any, Iterator
 
 import click
 
 from ..boundary import terminal
+from ..compiler.runtime_files import python_app
 
-SEED_MAX = 0xFFFFFFFF   # the VMs' generator takes a 32-bit seed; the other verbs keep the same range
+SEED_MAX: int = python_app().SEED_MAX   # the VMs' 32-bit seed (runtime_py/swarmvm_app.py); every verb's --seed
 
 
 class FiniteFloat(click.FloatRange):
@@ -83,16 +85,53 @@ def _usage_errors_in_one_line() -> Iterator[None]:
         raise OneLineUsage(usage_line(exc), exc.ctx) from exc
 
 
+@contextlib.contextmanager
+def _stdout_checked() -> Iterator[None]:
+    """What ran printed all it printed: stdout flushed at the end, and a help or version text
+    (click prints those itself, then exits) that could not be written, or went to a closed
+    stdout, made :class:`terminal.OutputStreamError` like any other line. Every other line goes
+    through :mod:`terminal`, so an OSError raised by click's own ``echo`` is that text's; any
+    other OSError is left as it is."""
+    try:
+        yield
+    except click.exceptions.Exit:
+        if sys.stdout is None:
+            raise terminal.OutputStreamError("closed") from None
+        terminal.flush()
+        raise
+    except OSError as exc:
+        if _raised_by_click_echo(exc):
+            raise terminal.OutputStreamError(exc.strerror or "error") from None
+        raise
+    terminal.flush()
+
+
+def _raised_by_click_echo(exc: BaseException) -> bool:
+    """The innermost frame of ``exc`` is click's echo (its write of a help or usage text)."""
+    tb = exc.__traceback__
+    while tb is not None and tb.tb_next is not None:
+        tb = tb.tb_next
+    return tb is not None and tb.tb_frame.f_globals.get("__name__") == "click.utils" and (
+        tb.tb_frame.f_code.co_name == "echo")
+
+
 class OneLineErrors(click.Group):
     """The main group: a usage error raised while parsing its own options or running any verb
     below it (parsing that verb's options and arguments included) is printed as one line by
-    :func:`usage_line`, exit status 2. ``--help`` and ``--version`` print as usual."""
+    :func:`usage_line`, exit status 2. ``--help`` and ``--version`` print as usual. Standard
+    output that cannot be written ends in one line and status 1 (:func:`terminal.stream_failed`)."""
+
+    def main(self, *args: Any, **kwargs: Any) -> Any:
+        try:
+            return super().main(*args, **kwargs)
+        except terminal.OutputStreamError as exc:
+            terminal.stream_failed(exc)
 
     def make_context(self, info_name: str | None, args: list[str], parent: click.Context | None = None,
                      **extra: Any) -> click.Context:
-        with _usage_errors_in_one_line():
+        with _usage_errors_in_one_line(), _stdout_checked():
             return super().make_context(info_name, args, parent, **extra)
 
     def invoke(self, ctx: click.Context) -> Any:
-        with _usage_errors_in_one_line():
+        with _usage_errors_in_one_line(), _stdout_checked():
             return super().invoke(ctx)

@@ -42,6 +42,9 @@ class Supervisors:
     written: list[str] = field(default_factory=list)
     current: list[int] = field(default_factory=list)
     digest: bytes = b""
+    # The events and states are in a supervisor file's order and numbering (a supervisor.yaml,
+    # C tables, or an image packed from one), which the image's order section keeps for exact mode.
+    file_order: bool = False
 
     def counts(self) -> tuple[int, int, int, int]:
         """Events, supervisors, states, transitions as read (the seed's KPI table counts)."""

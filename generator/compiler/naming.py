@@ -15,12 +15,13 @@ is written:
   library declares can clash with it; it must be an ASCII identifier that no language or
   runtime keeps for itself.
 
-A rule one target only needs refuses the model for that target alone, naming it
-(swarmvm.targets.generate; ``swarmvm check --target T`` applies them up front): the Kilobot's
-9-byte messages (:func:`kilobot_messages`), and ARGoS's 16-bit message codes and C++'s
-reservation of identifiers holding ``__`` (:func:`argos_names`)."""
+A rule one target only needs lives in that target's record (its ``rules``) and refuses the
+model for that target alone, naming it (swarmvm.targets.generate; ``swarmvm check --target T``
+applies them up front): the Kilobot's 9-byte messages (swarmvm.targets.kilobot), ARGoS's 16-bit
+message codes and C++'s reservation of identifiers holding ``__`` (swarmvm.targets.argos)."""
 
 import keyword
+import os
 import re
 from dataclasses import dataclass
 
@@ -36,8 +37,6 @@ def callback_stem(name: str) -> str:
     stem: str = python_vm().callback_stem(name)
     return stem
 
-
-KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
 
 _C_CPP_KEYWORDS = frozenset("""
 alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t char32_t
@@ -60,13 +59,37 @@ _RUNTIME_PREFIXES = ("svm", "swarmvm", "kilo")
 _CASE_SENSITIVE_PREFIXES = ("SCT",)
 
 
+# A file named for what it is, not for its model: its folder names the model (the OpenSwarm
+# projects keep each role's supervisor.yaml in a folder named for the role).
+GENERIC_STEMS = ("supervisor",)
+
+
+def default_stem(path: str) -> str:
+    """The model's name when none is given: the input's file stem, or its folder's name for a
+    file of a generic stem (``worker/supervisor.yaml`` is ``worker``); the naming rule
+    (:func:`file_stem`) then makes either a valid name."""
+    stem = os.path.splitext(os.path.basename(path))[0]
+    folder = os.path.basename(os.path.dirname(os.path.abspath(path)))
+    return folder if stem.lower() in GENERIC_STEMS and folder else stem
+
+
+# Names Windows keeps for devices, in any case and with any extension (CON.svm is the console):
+# a file so named cannot be checked out or built there.
+WINDOWS_DEVICES = frozenset(["CON", "PRN", "AUX", "NUL", *("COM%d" % n for n in range(10)),
+                             *("LPT%d" % n for n in range(10))])
+
+
 def file_stem(stem: str, source: str, key: str = "--name") -> str:
     """``stem`` as the model's name in file names: every character outside [A-Za-z0-9_] made
-    ``_``, ``m_`` before a leading digit. InputError (naming ``key``, the option that gave it)
-    when the result is longer than MAX_MODEL_NAME, so that every file named after it fits 255
+    ``_``, ``m_`` before a leading digit (so no name ends in a dot or a space, which Windows
+    drops). InputError (naming ``key``, the option that gave it) for a Windows device name
+    (:data:`WINDOWS_DEVICES`), or when the result is longer than MAX_MODEL_NAME, so that every file named after it fits 255
     bytes. What `export` and `synth` name their files by: files, not code, so any word will do."""
     name = re.sub(r"[^A-Za-z0-9_]", "_", stem)
     name = "m_" + name if name[:1].isdigit() else name
+    if name.upper() in WINDOWS_DEVICES:
+        raise InputError(source, key, "model name %r is a device name on Windows (%s.svm could not be checked out "
+                         "or built there): give another with %s" % (name, name, key))
     if len(name) > MAX_MODEL_NAME:
         raise InputError(source, key, "model name of %d characters: at most %d, so that the generated file names "
                          "fit %d bytes: give a shorter one with %s" % (len(name), MAX_MODEL_NAME, FILE_NAME_BYTES, key))
@@ -137,35 +160,3 @@ def event_names(model: Model) -> list[EventNames]:
         code = message_code(message) if message is not None else None
         result.append(EventNames(i, name, "EV_" + name, stem, controllable, public, message, code))
     return result
-
-
-def argos_names(model: Model, events: list[EventNames]) -> None:
-    """The ARGoS target's own rules: InputError naming the event when its C++ callbacks would
-    hold ``__`` (reserved to the implementation in C++, not in C or Python), or when two messages
-    share a 16-bit range-and-bearing code."""
-    codes: dict[int, str] = {}
-    for e in events:
-        if "__" in e.stem:
-            raise InputError(model.source, "events", "C++ reserves identifiers with '__': rename the event",
-                             "event %s" % e.const)
-        if e.message is not None and e.code is not None:
-            first = codes.setdefault(e.code, e.message)
-            if first != e.message:
-                raise InputError(model.source, "events", "messages %r and %r have the same 16-bit ARGoS code %d: "
-                                 "rename one" % (first, e.message, e.code), "event %s" % e.const)
-
-
-def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:
-    """The distinct message names of a Kilobot application, in event order; InputError when two
-    of them agree on the 9 bytes a Kilobot message carries."""
-    seen: dict[str, EventNames] = {}
-    for e in events:
-        if e.message is None:
-            continue
-        first = seen.setdefault(e.message[:KILOBOT_MESSAGE_BYTES], e)
-        if first.message != e.message:
-            raise InputError(model.source, "events", "%s and %s use the messages %r and %r, one Kilobot message %r "
-                             "(a message carries the first %d characters of the name): rename one"
-                             % (first.const, e.const, first.message, e.message, e.message[:KILOBOT_MESSAGE_BYTES],
-                                KILOBOT_MESSAGE_BYTES), "event %s" % e.const)
-    return list(dict.fromkeys(e.message for e in events if e.message is not None))

@@ -7,14 +7,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Optional
 
-from ..boundary.errors import InputError
-from ..readers import SUFFIXES
+from ..boundary.errors import InputError, note_read
+from ..readers import READERS, read_supervisor
 from ..readers.automata import load_automata
-from ..readers.supervisor_yaml import load_supervisor
 from .canonical import canonicalise
 from .image import pack
 from .model import Model, Supervisors
-from .naming import model_identifier
+from .naming import default_stem, model_identifier
 from .runtime_files import image_format
 from .tables import Tables, build_tables
 
@@ -46,15 +45,17 @@ class Compiled:
 
 def expand_directories(paths: Sequence[str]) -> list[str]:
     """Each directory among ``paths`` replaced by the automaton files in it, in natural order
-    (``x_2.gen`` before ``x_10.gen``): ``swarmvm export --format gen`` writes a set that way."""
+    (``x_2.gen`` before ``x_10.gen``): ``swarmvm export --format gen`` writes a set that way.
+    Each is recorded as read, as its files are."""
     out = []
     for path in paths:
         if not os.path.isdir(path):
             out.append(path)
             continue
-        found = [os.path.join(path, f) for f in os.listdir(path) if os.path.splitext(f)[1].lower() in SUFFIXES]
+        found = [os.path.join(path, f) for f in os.listdir(path) if os.path.splitext(f)[1].lower() in READERS]
         if not found:
-            raise InputError(path, "", "directory holds no automata (%s)" % ", ".join(SUFFIXES))
+            raise InputError(path, "", "directory holds no automata (%s)" % ", ".join(READERS))
+        note_read(os.stat(path))       # no output may be written into a folder being read
         out.extend(sorted(found, key=lambda f: [int(p) if p.isdecimal() else p for p in re.split(r"(\d+)", f)]))
     return out
 
@@ -70,12 +71,12 @@ def load_as(paths: Sequence[str], published: bool) -> Supervisors:
     """:func:`load`; ``published``: a supervisor.yaml read as the published VMs read it
     (load_supervisor)."""
     paths = expand_directories(paths)
-    automata = [p for p in paths if os.path.splitext(p)[1].lower() in SUFFIXES]
+    automata = [p for p in paths if os.path.splitext(p)[1].lower() in READERS]
     if automata and len(automata) != len(paths):
-        raise InputError(paths[0], "", "give either one supervisor.yaml or automata (%s), not both" % ", ".join(SUFFIXES))
+        raise InputError(paths[0], "", "give either one supervisor file or automata (%s), not both" % ", ".join(READERS))
     if not automata and len(paths) != 1:
-        raise InputError(paths[1], "", "a compiled supervisor is one file; give one .yaml at a time")
-    spec: Supervisors = load_automata(paths) if automata else load_supervisor(paths[0], published)
+        raise InputError(paths[1], "", "a compiled supervisor is one file; give one at a time")
+    spec: Supervisors = load_automata(paths) if automata else read_supervisor(paths[0], published)
     return spec
 
 
@@ -93,7 +94,7 @@ def compile_spec(spec: Supervisors, paths: Sequence[str], name: Optional[str] = 
     tables = build_tables(model)
     image = pack(tables, spec.source, names=names)
     ordered = packed = image
-    if names and len(paths) == 1 and paths[0].lower().endswith((".yaml", ".yml")):
+    if names and spec.file_order:
         positions = [spec.events.index(event) for event in model.events]
         order = (positions, [number for sup in model.supervisors for number in sup.input_states])
         ordered = pack(tables, spec.source, names=True, order=order)
@@ -102,5 +103,5 @@ def compile_spec(spec: Supervisors, paths: Sequence[str], name: Optional[str] = 
         fits = spec.digest and all(len(name) <= image_format().MAX_NAME_LENGTH for name in spec.written)
         packed = ordered if not fits else pack(tables, spec.source, names=True, order=order, source_section=(
             spec.digest, [sup.start for sup in model.supervisors], [spec.written[i] for i in positions]))
-    stem = name or os.path.splitext(os.path.basename(paths[0]))[0]
+    stem = name or default_stem(paths[0])
     return Compiled(stem, paths[0], model, tables, image, ordered, packed)

@@ -52,16 +52,16 @@ class _Numbering:
     """Distinct values numbered in order of first appearance (vectors of states, fired tuples)."""
 
     def __init__(self) -> None:
-        self.numbers: dict = {}
+        self.numbers: dict[tuple[int, ...], int] = {}
 
-    def __call__(self, value: tuple) -> int:
+    def __call__(self, value: tuple[int, ...]) -> int:
         return self.numbers.setdefault(value, len(self.numbers))
 
-    def values(self) -> list:
+    def values(self) -> list[list[int]]:
         return [list(v) for v in self.numbers]
 
 
-def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool) -> dict:
+def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool) -> dict[str, object]:
     """Everything the page's script displays, as JSON-ready lists of integers and names."""
     vectors, fired_sets = _Numbering(), _Numbering()
     fired_sets(())

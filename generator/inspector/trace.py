@@ -15,6 +15,9 @@ from ..boundary.errors import InputError, ascii_int
 from ..compiler.model import Model
 from ..readers.event_script import file_lines
 
+States = tuple[int, ...]        # one state per supervisor, as a trace line's STATES field
+Fired = tuple[int, ...]         # event indices in firing order, as a trace line's EVENTS field
+
 
 @dataclass
 class Run:
@@ -22,18 +25,18 @@ class Run:
     the states before ``first``, and ``start_violations``), plus the whole run's summary."""
     name: str
     first: int
-    start: tuple
+    start: States
     start_violations: int
-    fired: list = field(default_factory=list)        # per step, a tuple of event indices in firing order
-    states: list = field(default_factory=list)       # per step, the tuple of states after it
-    violations: list = field(default_factory=list)   # per step, the counter after it
-    steps: int = 0                                   # steps in the whole trace
-    counts: list = field(default_factory=list)       # per event, how often it fired in the whole trace
-    last: tuple = ()                                 # the states after the last step
+    fired: list[Fired] = field(default_factory=list)     # per step, the events in firing order
+    states: list[States] = field(default_factory=list)   # per step, the states after it
+    violations: list[int] = field(default_factory=list)  # per step, the counter after it
+    steps: int = 0                                       # steps in the whole trace
+    counts: list[int] = field(default_factory=list)      # per event, how often it fired in the whole trace
+    last: States = ()                                    # the states after the last step
     last_violations: int = 0
 
 
-def _events(path: str, where: str, text: str, index: dict) -> tuple:
+def _events(path: str, where: str, text: str, index: dict[str, int]) -> Fired:
     if text == "-":
         return ()
     fired = []
@@ -48,15 +51,17 @@ def _events(path: str, where: str, text: str, index: dict) -> tuple:
     return tuple(fired)
 
 
-def _states(path: str, where: str, text: str, sizes: list) -> tuple:
+def _states(path: str, where: str, text: str, sizes: list[int]) -> States:
     parts = text.split(",")
     if len(parts) != len(sizes):
         raise InputError(path, "trace", "%d states for %d supervisors" % (len(parts), len(sizes)), where)
-    states = tuple(ascii_int(p) for p in parts)
-    for sup, (state, size) in enumerate(zip(states, sizes)):
+    states = []
+    for sup, (part, size) in enumerate(zip(parts, sizes)):
+        state = ascii_int(part)
         if state is None or state >= size:
-            raise InputError(path, "trace", "supervisor %d has no state %s" % (sup, parts[sup]), where)
-    return states
+            raise InputError(path, "trace", "supervisor %d has no state %s" % (sup, part), where)
+        states.append(state)
+    return tuple(states)
 
 
 def parse_trace(path: str, name: str, lines: Iterable[str], model: Model, first: int, window: int) -> Run:
@@ -74,7 +79,7 @@ def parse_trace(path: str, name: str, lines: Iterable[str], model: Model, first:
         if len(parts) != 4:
             raise InputError(path, "trace", "not STEP EVENTS STATES VIOLATIONS", where)
         step, violations = ascii_int(parts[0]), ascii_int(parts[3])
-        if step != run.steps + 1:
+        if step is None or step != run.steps + 1:
             raise InputError(path, "trace", "step %s where step %d was due" % (parts[0], run.steps + 1), where)
         if violations is None:
             raise InputError(path, "trace", "violations %s is not a number" % parts[3], where)

@@ -4,15 +4,15 @@ token format (one ``.gen`` per local supervisor, every state marked: a superviso
 is closed; public events in a ``% swarmvm public:`` comment, as libFAUDES has no such flag). Both read back into an equivalent set (tests/models/test_export.py)."""
 
 from fractions import Fraction
-from typing import Dict, List
+from typing import Dict, Iterable, List, Union
 
-from ..boundary.escape import gen_string, identifier_part
+from ..boundary.escape import comment, gen_string, identifier_part
 from ..compiler.model import Model
 from .pictures import drawable_product, picture_files
 from .product import DEFAULT_MAX_STATES
 
 
-def _flat(values) -> str:
+def _flat(values: Iterable[object]) -> str:
     return "[ %s ]" % ", ".join(str(v) for v in values)
 
 
@@ -29,9 +29,9 @@ def _event(name: str) -> str:
 def to_yaml(model: Model) -> str:
     """The model as a Nadzoru 2 ``supervisor.yaml`` (newer spelling: ``ev_public``)."""
     n = len(model.events)
-    data: List = []
+    data: List[Union[int, str]] = []          # counts and targets, and the events as written
     positions: List[int] = []
-    prob_data: List = []
+    prob_data: List[Union[int, str]] = []     # counts, and the probabilities as written
     prob_positions: List[int] = []
     for sup in model.supervisors:
         positions.append(len(data))
@@ -74,7 +74,7 @@ def to_gen(model: Model, sup: int, name: str) -> str:
     public = [gen_string(model.events[e]) for e in sorted(local.alphabet) if model.public[e]]
     return "\n".join([
         '<Generator name=%s ftype="System">' % gen_string(name),
-        "% " + "written by swarmvm from %s, supervisor %d; every state is marked" % (model.source, sup),
+        "% " + "written by swarmvm from %s, supervisor %d; every state is marked" % (comment(model.source), sup),
         *(["% swarmvm public: " + " ".join(public)] if public else []),
         "<Alphabet>", *alphabet, "</Alphabet>",
         "<States>", states, "</States>",

@@ -6,6 +6,7 @@ libFAUDES an event is named with Nadzoru's ``EV_`` prefix (libFAUDES refuses an 
 which Nadzoru 2 allows); states are named ``s0, s1, ...`` by their index in the automaton."""
 
 import contextlib
+import importlib
 import io
 from functools import lru_cache
 from types import ModuleType
@@ -21,8 +22,7 @@ def libfaudes() -> ModuleType:
     prints warnings on standard output (no matplotlib or pillow), which would otherwise end up
     in every command's output."""
     with contextlib.redirect_stdout(io.StringIO()):
-        import faudes
-    return faudes
+        return importlib.import_module("faudes")
 
 
 def faudes_name(event: str) -> str:

@@ -15,7 +15,7 @@ product's (docs/limits.md)."""
 import math
 from collections import deque
 from dataclasses import dataclass
-from typing import Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
 
 from ..boundary.errors import InputError
 from ..compiler.model import Model
@@ -98,7 +98,7 @@ class Conjunction:
     (an event in no alphabet is never blocked), ``start`` the initial vector. Each state's enabled events are one AND of per-automaton
     bit masks, so a state costs its automata and its transitions, not every event."""
 
-    def __init__(self, events: int, alphabets: Sequence[frozenset], delta: Sequence[Sequence[Dict[int, int]]],
+    def __init__(self, events: int, alphabets: Sequence[frozenset[int]], delta: Sequence[Sequence[Dict[int, int]]],
                  start: Vector):
         self.delta, self.start = delta, start
         self.holders = [[s for s, alphabet in enumerate(alphabets) if e in alphabet] for e in range(events)]
@@ -147,7 +147,7 @@ class Conjunction:
             yield event, tuple(out)
 
 
-def _mask(events) -> int:
+def _mask(events: Iterable[int]) -> int:
     return sum(1 << e for e in events)
 
 

@@ -15,7 +15,7 @@ reaches it, so the designer can replay it with ``swarmvm trace``. Definitions (d
   events and cannot change where the robot ends up."""
 
 from dataclasses import dataclass
-from typing import List, Set, Tuple
+from typing import Iterable, List, Set, Tuple
 
 from ..boundary.escape import terminal
 from ..compiler.model import Model
@@ -41,7 +41,7 @@ class Report:
 CHECKS = ("deadlock", "no control again", "never occurs", "ignored input", "not confluent")
 
 
-def _names(model: Model, events) -> Tuple[str, ...]:
+def _names(model: Model, events: Iterable[int]) -> Tuple[str, ...]:
     return tuple(model.events[e] for e in events)
 
 

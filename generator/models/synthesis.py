@@ -12,7 +12,7 @@ import os
 from typing import Any, Dict, List, Sequence
 
 from ..boundary.errors import InputError
-from ..compiler.model import Supervisors
+from ..compiler.model import LocalSupervisor, Supervisors
 from ..readers.automata import load_automata
 from ..readers.synth_script import Step, SynthScript
 from .faudes_bridge import libfaudes, local_from_system, system_from_local
@@ -109,8 +109,8 @@ def synthesise(script: SynthScript, models: Dict[str, str], exports: Sequence[st
     chosen = list(exports or script.exports or supc_order)
     if not chosen:
         raise InputError(script.source, "export", "no supervisor to export (no SupC and no export given)")
-    supervisors: list = []
-    events: list = []
+    supervisors: list[LocalSupervisor] = []
+    events: list[str] = []
     for name in chosen:
         if name not in env:
             raise InputError(script.source, "export", "%s is not a model or a result of the script" % name)

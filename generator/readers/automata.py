@@ -6,17 +6,18 @@ and the ``public`` flag must agree between files that share an event; a ``probab
 attribute on transitions makes the set probabilistic (as Nadzoru 2's probabilistic plug-in)."""
 
 import os
+from collections.abc import Sequence
 from fractions import Fraction
 
 from ..boundary.errors import InputError
-from ..compiler.model import Supervisors
+from ..compiler.model import LocalSupervisor, Supervisors
 from . import read_automaton
 
 
-def load_automata(paths):
+def load_automata(paths: Sequence[str]) -> Supervisors:
     """Several automaton files -> one :class:`Supervisors` (one local supervisor per file)."""
-    events: dict = {}
-    supervisors: list = []
+    events: dict[str, tuple[bool, bool]] = {}      # name -> (controllable, public), as AutomatonFile's
+    supervisors: list[LocalSupervisor] = []
     probabilistic, size = False, 0
     for path in paths:
         read = read_automaton(path)

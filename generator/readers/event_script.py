@@ -4,20 +4,22 @@ A script says, for each step, which uncontrollable events' checks return true. A
 line per step listing ``EV_`` names separated by spaces, or ``-`` for none; ``#`` starts a
 comment line."""
 
-import os
 import random
-import stat
 import sys
+from typing import Iterable, Iterator, Sequence
 
-from ..boundary.errors import MAX_BYTES, InputError, read_input
+from ..boundary.errors import MAX_BYTES, InputError, decode_text, open_input
+from ..compiler.tables import Tables
 
 MAX_STEPS = 10 ** 7             # steps in a script: what ``swarmvm script --steps`` writes at most
 MAX_LINE_BYTES = 1 << 17        # a line naming each of 255 events of 255 characters fits
 STDIN = "-"                     # the script name that means standard input (``trace --script -``)
 STDIN_NAME = "<stdin>"          # how messages name it
 
+Row = set[int]                  # one step of a script: the indices of the events that occur
 
-def parse_lines(path, lines, names, controllable):
+
+def parse_lines(path: str, lines: Iterable[str], names: Sequence[str], controllable: int) -> Iterator[Row]:
     """Lines of a script (str) -> its rows (sets of event indices), one at a time; InputError
     at the first bad line. ``names`` are the image's bare event names."""
     index = {"EV_" + n: i for i, n in enumerate(names)}
@@ -25,7 +27,7 @@ def parse_lines(path, lines, names, controllable):
         line = line.strip()
         if not line or line.startswith("#"):
             continue
-        row = set()
+        row: Row = set()
         if line != "-":
             for token in line.split():
                 if token not in index:
@@ -37,16 +39,16 @@ def parse_lines(path, lines, names, controllable):
         yield row
 
 
-def parse_script(path, text, names, controllable):
+def parse_script(path: str, text: str, names: Sequence[str], controllable: int) -> list[Row]:
     """Text -> list of sets of event indices. ``names`` are the image's bare event names."""
     return list(parse_lines(path, text.splitlines(), names, controllable))
 
 
-def file_lines(path):
+def file_lines(path: str) -> Iterator[str]:
     """The lines of a regular file, decoded one at a time (InputError for a line that is not
     UTF-8 or longer than MAX_LINE_BYTES)."""
     try:
-        with open(path, "rb") as handle:
+        with open_input(path) as handle:
             number = 0
             while True:
                 raw = handle.readline(MAX_LINE_BYTES + 1)
@@ -55,15 +57,12 @@ def file_lines(path):
                 number += 1
                 if len(raw) > MAX_LINE_BYTES:
                     raise InputError(path, "line %d" % number, "line over the %d-byte limit" % MAX_LINE_BYTES)
-                try:
-                    yield raw.decode("utf-8")
-                except UnicodeDecodeError as exc:
-                    raise InputError(path, "line %d" % number, "not UTF-8 text (byte %d of the line)" % exc.start)
+                yield decode_text(path, raw, "line %d" % number, " of the line")
     except OSError as exc:
         raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
 
 
-def _stdin_bytes():
+def _stdin_bytes() -> bytes:
     """Standard input's bytes, refused past errors.MAX_BYTES as a pipe given by name is."""
     data = sys.stdin.buffer.read(MAX_BYTES + 1)
     if len(data) > MAX_BYTES:
@@ -71,27 +70,13 @@ def _stdin_bytes():
     return data
 
 
-def _decoded(path, data):
-    """A whole script's bytes as text (InputError when they are not UTF-8)."""
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
-
-
-def read_script_rows(path, names, controllable):
-    """A script file's rows, to iterate once, in constant memory: a regular file is read twice,
-    line by line, first to refuse bad input (InputError, before any row) and MAX_STEPS or more
-    steps, then for the rows; anything else (a pipe, a device) is read whole, within
-    errors.MAX_BYTES, as every other input is; :data:`STDIN` reads standard input so, once."""
+def read_script_rows(path: str, names: Sequence[str], controllable: int) -> Iterator[Row]:
+    """A script file's rows, to iterate once, in constant memory: the file (a regular file, as
+    every input: :func:`~swarmvm.boundary.errors.open_input`) is read twice, line by line, first
+    to refuse bad input (InputError, before any row) and MAX_STEPS or more steps, then for the
+    rows; :data:`STDIN` reads standard input whole, within errors.MAX_BYTES, once."""
     if path == STDIN:
-        return iter(parse_script(STDIN_NAME, _decoded(STDIN_NAME, _stdin_bytes()), names, controllable))
-    try:
-        regular = stat.S_ISREG(os.stat(path).st_mode)
-    except OSError as exc:
-        raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
-    if not regular:
-        return iter(parse_script(path, _decoded(path, read_input(path)), names, controllable))
+        return iter(parse_script(STDIN_NAME, decode_text(STDIN_NAME, _stdin_bytes()), names, controllable))
     steps = 0
     for _ in parse_lines(path, file_lines(path), names, controllable):
         steps += 1
@@ -100,7 +85,7 @@ def read_script_rows(path, names, controllable):
     return parse_lines(path, file_lines(path), names, controllable)
 
 
-def script_lines(rows, names):
+def script_lines(rows: Iterable[Iterable[int]], names: Sequence[str]) -> Iterator[str]:
     """Rows of event indices -> the script's lines, without newlines (events in index order),
     one at a time: a script of millions of steps is written in constant memory."""
     yield "# swarmvm event script: one step per line, the uncontrollable events that occur"
@@ -108,12 +93,12 @@ def script_lines(rows, names):
         yield " ".join("EV_" + names[e] for e in sorted(row)) or "-"
 
 
-def format_script(rows, names):
+def format_script(rows: Iterable[Iterable[int]], names: Sequence[str]) -> str:
     """Rows of event indices -> script text."""
     return "".join(line + "\n" for line in script_lines(rows, names))
 
 
-def random_rows(tables, steps, seed, density=0.25):
+def random_rows(tables: Tables, steps: int, seed: int, density: float = 0.25) -> Iterator[Row]:
     """A reproducible random script over the model's uncontrollable events, row by row."""
     rng = random.Random(seed)
     uncontrollable = [e for e in range(tables.num_events) if not tables.controllable >> e & 1]
@@ -121,6 +106,6 @@ def random_rows(tables, steps, seed, density=0.25):
         yield {e for e in uncontrollable if rng.random() < density}
 
 
-def random_script(tables, steps, seed, density=0.25):
+def random_script(tables: Tables, steps: int, seed: int, density: float = 0.25) -> list[Row]:
     """The rows of :func:`random_rows` as a list."""
     return list(random_rows(tables, steps, seed, density))

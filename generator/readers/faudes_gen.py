@@ -17,7 +17,7 @@ and reads it back (without it every event is private). Exactly one initial state
 import re
 from typing import Dict, List, Sequence, Tuple
 
-from ..boundary.errors import InputError, ascii_int, read_input
+from ..boundary.errors import InputError, ascii_int, decode_text, read_input
 from ..compiler.runtime_files import image_format
 from .automaton import AutomatonBuilder, AutomatonFile
 
@@ -108,10 +108,7 @@ def _names(path: str, section: str, tokens: Sequence[Token]) -> List[str]:
 def read_gen(path: str) -> AutomatonFile:
     """One libFAUDES ``.gen`` file -> :class:`~swarmvm.readers.automaton.AutomatonFile`."""
     raw = read_input(path)
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
+    text = decode_text(path, raw)
     body = _sections(path, _tokens(path, text))
     build = AutomatonBuilder(path)
     alphabet = body.get("Alphabet", [])

@@ -8,7 +8,7 @@ The file is parsed as data by :mod:`swarmvm.readers.lua_literal`, never executed
 
 from typing import Any, Optional
 
-from ..boundary.errors import InputError, read_input
+from ..boundary.errors import InputError, decode_text, read_input
 from .automaton import AutomatonBuilder, AutomatonFile
 from .lua_literal import LuaSyntaxError, parse_lua_table
 from .supervisor_yaml import show_value
@@ -44,10 +44,9 @@ def _index(path: str, entry: dict[Any, Any], field: str, key: str, size: int) ->
 def read_nza(path: str) -> AutomatonFile:
     """One ``.nza`` file -> :class:`~swarmvm.readers.automaton.AutomatonFile`."""
     raw = read_input(path)
+    text = decode_text(path, raw)
     try:
-        table = parse_lua_table(raw.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
+        table = parse_lua_table(text)
     except LuaSyntaxError as exc:
         raise InputError(path, "", "not a Lua table literal: %s" % exc.message, "line %d" % exc.line)
     states, events = _list(path, table, "states"), _list(path, table, "events")

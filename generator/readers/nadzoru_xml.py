@@ -3,6 +3,9 @@
 attribute on a transition makes the automaton probabilistic (Nadzoru 2's probabilistic
 plug-in)."""
 
+from typing import Optional
+from xml.etree.ElementTree import Element
+
 from ..boundary.errors import InputError, ascii_int
 from .automaton import AutomatonBuilder, AutomatonFile, read_fsa_xml
 from .supervisor_yaml import NAME
@@ -11,7 +14,7 @@ from .supervisor_yaml import probability as parse_probability
 TRUE = {"true": True, "false": False}
 
 
-def _flag(path, element, attribute, where, default=None):
+def _flag(path: str, element: Element, attribute: str, where: str, default: Optional[bool] = None) -> bool:
     value = element.get(attribute)
     if value is None and default is not None:
         return default
@@ -20,7 +23,7 @@ def _flag(path, element, attribute, where, default=None):
     return TRUE[value.strip().lower()]
 
 
-def _int_attr(path, element, attribute, where):
+def _int_attr(path: str, element: Element, attribute: str, where: str) -> int:
     value = element.get(attribute, "")
     number = ascii_int(value)
     if number is None:

@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass
 from typing import Optional, Sequence, Tuple
 
-from ..boundary.errors import InputError, read_input
+from ..boundary.errors import InputError, decode_text, read_input
 
 OPERATIONS = {"sync": "sync", "supc": "supc", "minimize": "min", "minimise": "min", "min": "min"}
 ARITY = {"sync": (2, None), "supc": (2, 2), "min": (1, 1)}
@@ -53,7 +53,7 @@ def _strip_comment(line: str) -> str:
     return line
 
 
-def _arguments(source, text, number, what):
+def _arguments(source: str, text: str, number: int, what: str) -> Tuple[str, ...]:
     args = tuple(a.strip() for a in text.split(",")) if text.strip() else ()
     for arg in args:
         if not re.fullmatch(IDENT, arg):
@@ -63,7 +63,8 @@ def _arguments(source, text, number, what):
 
 def parse_synth_script(source: str, text: str) -> SynthScript:
     """Statements of a synthesis script (``source`` names it in errors)."""
-    steps, exports = [], []
+    steps: list[Step] = []
+    exports: list[str] = []
     for number, raw in enumerate(text.splitlines(), 1):
         line = _strip_comment(raw).strip()
         if not line:
@@ -100,8 +101,4 @@ def read_synth_script(path: Optional[str], statements: Sequence[str]) -> SynthSc
         raise InputError(path or "--statement", "", "give a script file (--script) or statements (-e), one of the two")
     if path is None:
         return parse_synth_script("--statement", "\n".join(statements))
-    try:
-        text = read_input(path).decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(path, "", "not UTF-8 text (byte %d)" % exc.start)
-    return parse_synth_script(path, text)
+    return parse_synth_script(path, decode_text(path, read_input(path)))

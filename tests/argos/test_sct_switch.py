@@ -7,9 +7,8 @@ CMake files, `utility` library and loop functions, plus the variant's controller
 written here in the published style and using the variant's API) gets the published sct.h and
 sct.cpp of that variant from ../shared/reference/ (oracles, copied into the scratch project only)
 and the corpus supervisor its study used. It is built against real ARGoS and yaml-cpp and run for
-a few seeds; then the fenced blocks of that docs section are applied to it as written (shell
-blocks run by bash, diff blocks by `patch`, the one that defines SWARMVM_SCT_VARIANT_MHSC for the
-mhsc variant only), it is built again in the same build folder (its cache keeps where ARGoS is,
+a few seeds; then the shell blocks of that docs section are run in it as written (`swarmvm
+compat-switch .`, then CMake), it is built again in the same build folder (its cache keeps where ARGoS is,
 as a user's does) and run again: every seed's ARGoS log (each robot's state string and callback
 calls at every step, then a summary) and position trace must be byte-identical."""
 
@@ -73,8 +72,8 @@ def write_project(variant, folder):
     shutil.copy(ROOT / "tests" / "corpus" / "openswarm" / variant.supervisor, folder / SUPERVISOR)
 
 
-def run(command, folder, env, stdin=None):
-    result = subprocess.run(command, cwd=folder, env=env, input=stdin, text=True,
+def run(command, folder, env):
+    result = subprocess.run(command, cwd=folder, env=env, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     assert result.returncode == 0, "%s failed:\n%s" % (command[:3], result.stdout)
 
@@ -112,13 +111,13 @@ def needed_libraries(folder):
 
 @pytest.fixture(scope="module")
 def tools():
-    """Skips (fails under CI) without the published VMs, yaml-cpp or patch."""
+    """Skips (fails under CI) without the published VMs, yaml-cpp or readelf."""
     missing = [what for what, there in (
         ("../shared/reference/ (the published VMs)", all((REFERENCE / v.reference / "sct.cpp").is_file()
                                                           for v in VARIANTS)),
         ("yaml-cpp (apt install libyaml-cpp-dev)", shutil.which("pkg-config") is not None and subprocess.run(
             ["pkg-config", "--exists", "yaml-cpp"]).returncode == 0),
-        ("patch, readelf", shutil.which("patch") is not None and shutil.which("readelf") is not None)) if not there]
+        ("readelf", shutil.which("readelf") is not None)) if not there]
     if missing:
         if os.environ.get("CI") == "true":
             pytest.fail("needed: " + ", ".join(missing))
@@ -126,9 +125,8 @@ def tools():
 
 
 def test_the_section_has_the_steps_this_test_applies():
-    languages = [language for language, _ in documented_blocks()]
-    assert languages == ["sh", "diff", "diff", "sh"]
-    assert [MHSC_DEFINE in text for language, text in documented_blocks() if language == "diff"] == [False, True]
+    assert [language for language, _ in documented_blocks()] == ["sh", "sh", "text"]
+    assert documented_blocks()[0][1].startswith("swarmvm compat-switch .\n")
 
 
 @pytest.mark.parametrize("variant", VARIANTS, ids=lambda v: v.folder)
@@ -148,9 +146,7 @@ def test_the_documented_switch_runs_as_the_published_vm(argos_prefix, tools, var
     for language, text in documented_blocks():
         if language == "sh":
             run(["bash", "-euo", "pipefail", "-c", text], project, env)
-        elif variant.folder == "mhsc" or MHSC_DEFINE not in text:
-            run(["patch", "-p1", "--forward", "--no-backup-if-mismatch"], project, env, stdin=text)
-    assert not (project / "src" / "utility" / "sct.cpp").exists()
+    assert "sct.cpp" not in (project / "src" / "utility" / "CMakeLists.txt").read_text()
     assert not any(name.startswith("libyaml-cpp") for name in needed_libraries(project))
 
     switched = run_experiments(variant, project)

@@ -66,7 +66,8 @@ TABLE = {
     "trace": (dict(inputs=[EXAMPLE], script_path="s.txt"), file_list("inputs") + one_file("script_path") + [
         ("script_path", MISSING, api.InputError, MISSING), ("seed", -1, api.InputError, "seed"),
         ("input_mode", "both", api.InputError, "input_mode"), ("control", "never", api.InputError, "control"),
-        ("policy", "best", api.InputError, "policy"), ("policy", 0, TypeError, "policy")]),
+        ("policy", "best", api.InputError, "policy"), ("policy", "learned", api.InputError, "policy"),
+        ("policy", 0, TypeError, "policy")]),
     "measure_footprint": (dict(elfs=["x.elf"]), file_list("elfs", missing=FootprintError) + [
         ("indirect", "svm_step=f", TypeError, "indirect"), ("indirect", ["svm_step"], api.InputError, "indirect[0]")]),
     "footprint_report": (dict(elfs=["x.elf"]), file_list("elfs", missing=FootprintError) + [
@@ -99,6 +100,8 @@ TABLE = {
         ("traces", [Path("r.trace")], TypeError, "traces[0]"), ("name", 1, TypeError, "name"),
         ("compare", "yes", TypeError, "compare"), ("compare", True, api.InputError, "compare"),
         ("first_step", 0, api.InputError, "first_step"), ("first_step", 1.5, TypeError, "first_step")]),
+    "compat_switch": (dict(project=str(ROOT / "examples")), one_file("project") + [
+        ("variant", "energy", api.InputError, "variant"), ("variant", 1, TypeError, "variant")]),
 }
 
 CASES = [(name, param, value, error, text) for name, (_good, bad) in TABLE.items() for param, value, error, text in bad]

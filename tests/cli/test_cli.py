@@ -25,15 +25,42 @@ def corpus_table():
     return rows
 
 
-def test_check_prints_the_corpus_table_exactly():
-    files = sorted((CORPUS / "openswarm").glob("*.yaml"))
-    result = CliRunner().invoke(main, ["check"] + [str(f) for f in files])
+def test_check_prints_the_corpus_table_exactly(monkeypatch):
+    monkeypatch.chdir(CORPUS / "openswarm")
+    files = sorted(p.name for p in (CORPUS / "openswarm").glob("*.yaml"))
+    result = CliRunner().invoke(main, ["check"] + files)
     assert result.exit_code == 0, result.stderr
     printed = {}
     for line in result.stdout.splitlines()[2:]:
         cells = [c.strip() for c in line.strip("|").split("|")]
         printed[re.sub(r"\\(.)", r"\1", cells[0])] = tuple(int(c) for c in cells[1:])    # Markdown-escaped names
     assert printed == corpus_table() and len(printed) == 8
+
+
+def test_check_names_each_file_as_given_so_two_roles_rows_differ(tmp_path, monkeypatch):
+    """Issue 40: the OpenSwarm layout keeps each role's supervisor.yaml in a folder of its own."""
+    for role, source in (("worker", "network_worker.yaml"), ("leader", "network_leader.yaml")):
+        (tmp_path / role).mkdir()
+        (tmp_path / role / "supervisor.yaml").write_bytes((CORPUS / "openswarm" / source).read_bytes())
+    monkeypatch.chdir(tmp_path)
+    given = ["worker/supervisor.yaml", "./leader/supervisor.yaml", str(tmp_path / "worker" / "supervisor.yaml")]
+    result = CliRunner().invoke(main, ["check", *given])
+    assert result.exit_code == 0, result.stderr
+    assert [line.split("|")[1].strip() for line in result.stdout.splitlines()[2:]] == given
+
+
+def test_gen_names_a_supervisor_yaml_after_its_folder_and_says_so(tmp_path, monkeypatch):
+    (tmp_path / "my-worker").mkdir()
+    (tmp_path / "my-worker" / "supervisor.yaml").write_bytes((CORPUS / "openswarm" / "capbot_demo.yaml").read_bytes())
+    monkeypatch.chdir(tmp_path / "my-worker")
+    result = CliRunner().invoke(main, ["gen", "supervisor.yaml", "--target", "python", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.stderr
+    assert result.stderr == ("swarmvm: note: named the model my_worker after the folder of supervisor.yaml "
+                             "(give --name to choose another)\n")
+    assert (tmp_path / "out" / "my_worker.svm").is_file()
+    named = CliRunner().invoke(main, ["gen", "supervisor.yaml", "--target", "python", "-o", str(tmp_path / "o2"),
+                                      "--name", "supervisor"])
+    assert named.exit_code == 0 and named.stderr == "" and (tmp_path / "o2" / "supervisor.svm").is_file()
 
 
 def test_script_then_trace_is_the_reference_trace(vm, tmp_path):

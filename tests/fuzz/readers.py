@@ -19,6 +19,7 @@ import tempfile
 from pathlib import Path
 from typing import Callable, Dict
 
+import nadzoru_c_form
 from swarmvm import api
 from swarmvm.boundary.errors import InputError
 from swarmvm.readers.lua_literal import LuaSyntaxError, parse_lua_table
@@ -93,6 +94,7 @@ def _supervisor(suffix: str) -> Callable[[bytes], None]:
             return
         run_image(VM.Image.parse(compiled.image))
     target.__doc__ = "A %s file: checks and compiles, or an InputError." % suffix
+    target.suffix = suffix     # tests/readers/test_registry.py: every suffix swarmvm reads is fuzzed
     return target
 
 
@@ -173,8 +175,10 @@ READERS: Dict[str, Callable[[bytes], None]] = {
     "nza": _supervisor(".nza"),
     "lua": lua_literal,
     "gen": _supervisor(".gen"),
+    "c": _supervisor(".c"),
     "svm_runtime": svm_runtime,
     "svm": svm_swarmvm,
+    "svm_supervisor": _supervisor(".svm"),
     "script": script,
 }
 
@@ -182,8 +186,11 @@ READERS: Dict[str, Callable[[bytes], None]] = {
 def seeds(reader: str) -> Dict[str, bytes]:
     """The seed corpus of a reader: every file of its kind in the test corpus and examples
     ({name: bytes}); images are packed from the corpus's supervisors."""
-    if reader in ("svm", "svm_runtime"):
+    if reader in ("svm", "svm_runtime", "svm_supervisor"):
         return {p.stem + ".svm": api.compile_model([str(p)]).ordered_image for p in sorted(CORPUS.glob("*/*.yaml"))}
+    if reader == "c":
+        return {p.stem + ".c": nadzoru_c_form.inline(nadzoru_c_form.read_yaml(p)).encode("ascii")
+                for p in sorted(CORPUS.glob("*/*.yaml")) if "sup_data_prob" not in p.read_text(encoding="utf-8")}
     if reader == "script":
         return {"energy_worker.txt": api.make_script([str(SCRIPT_SUPERVISOR)], 20, 1).encode("ascii")}
     suffix = ".nza" if reader == "lua" else "." + reader

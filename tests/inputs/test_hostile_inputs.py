@@ -83,5 +83,5 @@ def test_a_script_that_is_a_folder_is_one_line(tmp_path):
     for command in (["trace", str(example), "--script", str(tmp_path)], ["synth", "--script", str(tmp_path), "-o",
                                                                           str(tmp_path / "x.yaml"), str(example)]):
         result = CliRunner().invoke(main, command)
-        assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: cannot read file (Is a directory)\n" % (
+        assert result.exit_code == 2 and result.stderr == "swarmvm: error: %s: is a folder, not a regular file\n" % (
             tmp_path), command

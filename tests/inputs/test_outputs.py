@@ -97,7 +97,7 @@ def test_gen_into_a_device_is_refused(tmp_path):
     assert stat.S_ISCHR(os.lstat(device).st_mode) and every_file(tmp_path) == ["out"]
 
 
-@pytest.mark.parametrize("target, kept", [("c", "supervisor_controller.c"), ("python", "supervisor_controller.py")])
+@pytest.mark.parametrize("target, kept", [("c", "energy_worker_controller.c"), ("python", "energy_worker_controller.py")])
 def test_a_folder_where_the_controller_goes_is_refused(target, kept, tmp_path):
     """The controller skeleton is a file gen keeps when it exists; a folder in its place was
     skipped silently (and the build failed later): now refused, and nothing written."""
@@ -148,3 +148,41 @@ def test_pack_into_a_missing_folder_makes_it(tmp_path):
     target = tmp_path / "a" / "b" / "x.svm"
     status, output = run("pack", EXAMPLE, "-o", str(target))
     assert status == 0 and target.read_bytes()[:4] == b"SVMI" and every_file(tmp_path / "a") == ["b", "b/x.svm"]
+
+
+# Issue 37, class 2: the umask decides a new file's permissions; a replaced file keeps its own.
+def _with_umask(mask, *args):
+    old = os.umask(mask)
+    try:
+        return run(*args)
+    finally:
+        os.umask(old)
+
+
+@pytest.mark.parametrize("mask", [0o000, 0o002, 0o022, 0o027, 0o077, 0o277])
+def test_new_files_get_the_permissions_the_umask_leaves(mask, tmp_path):
+    for args in (["gen", EXAMPLE, "--target", "c", "-o", str(tmp_path / "c")],
+                 ["pack", EXAMPLE, "-o", str(tmp_path / "x.svm")],
+                 ["export", EXAMPLE, "--format", "yaml", "-o", str(tmp_path / "x.yaml")]):
+        status, output = _with_umask(mask, *args)
+        assert status == 0, output
+    files = [p for p in tmp_path.rglob("*") if p.is_file()]
+    assert len(files) > 3
+    assert {stat.S_IMODE(p.stat().st_mode) for p in files} == {0o666 & ~mask}
+
+
+def test_a_replaced_file_keeps_its_permissions(tmp_path):
+    out = tmp_path / "x.svm"
+    assert _with_umask(0o022, "pack", EXAMPLE, "-o", str(out))[0] == 0
+    out.chmod(0o640)
+    assert _with_umask(0o000, "pack", EXAMPLE, "-o", str(out))[0] == 0
+    assert stat.S_IMODE(out.stat().st_mode) == 0o640
+
+
+def test_the_umask_is_read_without_being_changed():
+    from swarmvm.boundary.output import umask
+    old = os.umask(0o037)
+    try:
+        assert umask() == 0o037 and os.umask(0o037) == 0o037
+    finally:
+        os.umask(old)

@@ -22,6 +22,8 @@ HOST = {
     "swarmvm_learn_store.h": ("svl_keeper_start", "swarmvm_learn_store.c"),
     "swarmvm_stream.h": ("svm_stream_init", "swarmvm_stream.c"),
     "swarmvm_trace.h": None,
+    "swarmvm_format.h": None,
+    "swarmvm_crc_tables.h": None,
     "swarmvm_kilobot_eeprom.h": None,
 }
 # What the unit defines for the runtime: the generated tables' loader of the compatibility layer

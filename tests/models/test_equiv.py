@@ -19,8 +19,11 @@ def model(path):
 
 
 def accepts(m, word):
+    """``word`` is in m's closed language (over m's own events: any other event is not)."""
     vector, conjunction = tuple(0 for _ in m.supervisors), Conjunction.of(m)
     for name in word:
+        if name not in m.events:
+            return False
         vector = conjunction.step(vector, m.events.index(name))
         if vector is None:
             return False
@@ -71,7 +74,45 @@ def test_different_events_or_flags_are_reported(tmp_path):
     flipped = tmp_path / "flipped.yaml"
     flipped.write_text(ENERGY_WORKER.read_text().replace("ev_controllable: [ 1,1,0", "ev_controllable: [ 1,1,1", 1))
     result = run("equiv", ENERGY_WORKER, flipped)
-    assert result.stdout == "not equivalent: EV_highEnergy is controllable in one set only\n"
+    assert result.stdout == ("not equivalent: EV_highEnergy is controllable in one set only (the conjunctions' "
+                             "languages are the same: no event sequence tells them apart)\n")
+
+
+def _printed_word(stdout: str) -> tuple[list[str], str]:
+    """The shortest distinguishing sequence equiv printed (bare names), and the file allowing it."""
+    line = stdout.splitlines()[1]
+    assert line.startswith("shortest distinguishing sequence: ")
+    word, allowed = line.split(": ", 1)[1].split(" (allowed by ")
+    return [w[3:] for w in word.split()], allowed.split(", not by ")[0]
+
+
+@pytest.mark.parametrize("a, b", [(a, b) for a, b in itertools.combinations(SUPERVISORS, 2)
+                                  if set(model(a).events) != set(model(b).events)],
+                         ids=lambda p: p.stem)
+def test_sets_with_different_events_get_a_shortest_distinguishing_word(a, b):
+    """Issue 40: the word is in one language and not the other, and no shorter word over the
+    events of both tells them apart."""
+    result = run("equiv", a, b)
+    assert result.exit_code == 1 and result.stdout.startswith("not equivalent: events in only one set: EV_")
+    names, allowed = _printed_word(result.stdout)
+    ma, mb = model(a), model(b)
+    yes, no = (ma, mb) if allowed == str(a) else (mb, ma)
+    assert allowed in (str(a), str(b))
+    assert accepts(yes, names) and not accepts(no, names) and accepts(no, names[:-1])
+    alphabet = sorted(set(ma.events) | set(mb.events))
+    if len(alphabet) ** (len(names) - 1) <= 20000:
+        for n in range(len(names)):
+            for shorter in itertools.product(alphabet, repeat=n):
+                assert accepts(ma, shorter) == accepts(mb, shorter)
+
+
+def test_an_event_of_one_set_alone_is_the_word_when_it_can_start(tmp_path):
+    """The two leaders: a start event the other set lacks is a word of one event."""
+    a, b = CORPUS / "openswarm" / "hitl_leader.yaml", CORPUS / "openswarm" / "network_leader.yaml"
+    names, allowed = _printed_word(run("equiv", a, b).stdout)
+    ma, mb = model(a), model(b)
+    assert len(names) == 1 and (names[0] in ma.events) != (names[0] in mb.events)
+    assert allowed == str(a if names[0] in ma.events else b)
 
 
 def variant(m, kind):

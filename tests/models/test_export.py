@@ -112,3 +112,20 @@ def test_yaml_export_is_what_nadzoru_2_writes(tmp_path):
     original = CORPUS / "nadzoru2" / "public_example.yaml"
     assert run("export", original, "-f", "yaml", "-o", tmp_path / "p.yaml").exit_code == 0
     assert (tmp_path / "p.yaml").read_text() == original.read_text() + "\n"
+
+
+def test_a_file_name_cannot_write_a_directive_into_the_gen_comment(tmp_path):
+    """Issue 37, class 1: the source's name reaches the .gen comment through the comment
+    escaping; a name holding a line break and a `% swarmvm public:` directive naming a private
+    event stays inside the comment, and the export reads back as the same set."""
+    model = compile_inputs([str(ENERGY_WORKER)]).model
+    private = next(e for i, e in enumerate(model.events) if not model.public[i])
+    hostile = tmp_path / ("x\n% swarmvm public: " + private + "\n%.yaml")
+    hostile.write_bytes(ENERGY_WORKER.read_bytes())
+    out = tmp_path / "gen"
+    result = run("export", hostile, "--format", "gen", "-o", out)
+    assert result.exit_code == 0, result.stderr
+    written = sorted(out.glob("*.gen"))
+    assert written and not any(line.startswith("% swarmvm public: " + private)
+                               for p in written for line in p.read_text().splitlines())
+    assert run("equiv", hostile, out).exit_code == 0

@@ -8,6 +8,7 @@ from swarmvm.boundary.errors import InputError
 from swarmvm.readers.faudes_gen import read_gen
 from swarmvm.readers.nadzoru_nza import read_nza
 from swarmvm.readers.ides_xmd import read_xmd
+from swarmvm.readers.synth_script import read_synth_script
 
 XMD = '<?xml version="1.0" encoding="UTF-8"?>\n<model type="FSA"><data>%s</data></model>\n'
 
@@ -40,7 +41,8 @@ def test_an_nza_state_is_neither_initial_nor_marked_unless_it_says_so(tmp_path):
 
 
 @pytest.mark.parametrize("name, data, load, byte", [("g.nza", b"{ \xff }", read_nza, 2),
-                                                    ("g.gen", b"<Generator> \xff", read_gen, 12)])
+                                                    ("g.gen", b"<Generator> \xff", read_gen, 12),
+                                                    ("s.txt", b"S = SupC(G, \xff)", lambda path: read_synth_script(path, ()), 12)])
 def test_a_file_not_in_utf8_is_refused_naming_the_byte(tmp_path, name, data, load, byte):
     path = tmp_path / name
     path.write_bytes(data)

@@ -16,7 +16,7 @@ import pytest
 
 from conformance.cases import compiled_image, supervisor_yaml
 from one_state_image import one_state_image
-from swarmvm.compiler.runtime_files import RUNTIME_PY_DIR, image_format
+from swarmvm.compiler.runtime_files import RUNTIME_PY_DIR, image_format, step_source
 
 F = image_format()
 
@@ -35,26 +35,28 @@ def test_the_weighted_policy_draws_uniformly_when_every_enabled_event_weighs_0(v
     assert {tuple(run) for run in runs} == {(0,), (1,)}
 
 
-def test_the_cache_of_written_out_steps_holds_64_and_is_emptied_by_the_65th(vm, monkeypatch):
-    monkeypatch.setattr(vm, "_COMPILED", {})
-    first = vm._compiled(("probe", 0), ["a"], ["return a"])
+def test_the_cache_of_written_out_steps_holds_64_and_is_emptied_by_the_65th(monkeypatch):
+    steps = step_source()
+    monkeypatch.setattr(steps, "COMPILED", {})
+    first = steps.compiled(("probe", 0), ["a"], ["return a"])
     for n in range(1, 64):
-        vm._compiled(("probe", n), ["a"], ["return a + %d" % n])
-    assert vm._compiled(("probe", 0), ["a"], ["return a"]) is first and len(vm._COMPILED) == 64
-    vm._compiled(("probe", 64), ["a"], ["return a + 64"])
-    assert list(vm._COMPILED) == [("probe", 64)]
+        steps.compiled(("probe", n), ["a"], ["return a + %d" % n])
+    assert steps.compiled(("probe", 0), ["a"], ["return a"]) is first and len(steps.COMPILED) == 64
+    steps.compiled(("probe", 64), ["a"], ["return a + 64"])
+    assert list(steps.COMPILED) == [("probe", 64)]
 
 
-def test_a_written_out_step_is_compiled_once_per_key_and_the_cache_stays_bounded(vm, monkeypatch):
-    monkeypatch.setattr(vm, "_COMPILED", {})
-    first = vm._compiled(("probe", 0), ["a"], ["return a"])
-    vm._compiled(("probe", 1), ["a"], ["return a + 1"])
-    assert vm._compiled(("probe", 0), ["a"], ["return a"]) is first
-    for n in range(2, vm.MAX_COMPILED + 5):
-        vm._compiled(("probe", n), ["a"], ["return a + %d" % n])
-        assert len(vm._COMPILED) <= vm.MAX_COMPILED
+def test_a_written_out_step_is_compiled_once_per_key_and_the_cache_stays_bounded(monkeypatch):
+    steps = step_source()
+    monkeypatch.setattr(steps, "COMPILED", {})
+    first = steps.compiled(("probe", 0), ["a"], ["return a"])
+    steps.compiled(("probe", 1), ["a"], ["return a + 1"])
+    assert steps.compiled(("probe", 0), ["a"], ["return a"]) is first
+    for n in range(2, steps.MAX_COMPILED + 5):
+        steps.compiled(("probe", n), ["a"], ["return a + %d" % n])
+        assert len(steps.COMPILED) <= steps.MAX_COMPILED
     assert first.__code__.co_filename not in linecache.cache                 # evicted with its source lines
-    assert vm._compiled(("probe", 0), ["a"], ["return a"]) is not first     # evicted, compiled anew
+    assert steps.compiled(("probe", 0), ["a"], ["return a"]) is not first     # evicted, compiled anew
 
 
 def test_a_traceback_through_a_written_out_step_names_its_kind_and_shows_its_lines(vm):
@@ -241,9 +243,9 @@ def test_the_moves_table_gives_each_state_its_successors_by_event(vm, tmp_path):
 
 
 def test_the_vm_module_imports_beside_its_format_without_the_compiler(tmp_path):
-    """A Pi-puck has runtime_py's two files and no swarmvm package: the VM imports the format
-    module beside it (typing's branch is only mypy's)."""
-    for name in ("swarmvm_vm.py", "swarmvm_format.py"):
+    """A Pi-puck has runtime_py's three files and no swarmvm package: the VM imports the format
+    and step-writer modules beside it (typing's branch is only mypy's)."""
+    for name in ("swarmvm_vm.py", "swarmvm_format.py", "swarmvm_step_source.py"):
         (tmp_path / name).write_bytes((RUNTIME_PY_DIR / name).read_bytes())
     run = subprocess.run([sys.executable, "-I", "-c", "import sys; sys.path.insert(0, '.'); import swarmvm_vm; "
                           "print(swarmvm_vm.Image.__module__)"], cwd=tmp_path, capture_output=True, text=True)

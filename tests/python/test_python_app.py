@@ -50,6 +50,17 @@ def test_a_bad_option_value_is_a_usage_error(app):
     assert result.returncode == 2 and "--steps: '0' is not a positive number of steps" in result.stderr
 
 
+@pytest.mark.parametrize("option, good, bad", [("--seed", "4294967295", "4294967296"), ("--policy", "weighted", "learned")])
+def test_the_app_and_swarmvm_trace_take_the_same_seeds_and_policies(app, tmp_path, option, good, bad):
+    """One range of seeds and one list of policies (runtime_py/swarmvm_app.py), in the app and in
+    ``swarmvm trace`` alike: the last good value runs in both, the first bad one is refused by both."""
+    (tmp_path / "events.txt").write_text("-\n")
+    trace = ["swarmvm", "trace", str(EXAMPLE), "--script", str(tmp_path / "events.txt"), option]
+    for value, status in ((good, 0), (bad, 2)):
+        assert run(app, "--steps", "1", "--period", "0", option, value).returncode == status, value
+        assert subprocess.run(trace + [value], capture_output=True, text=True).returncode == status, value
+
+
 @pytest.mark.parametrize("source", ["file", "stdin"])
 def test_script_replays_with_the_trace_swarmvm_trace_prints(app, source):
     script = subprocess.run(["swarmvm", "script", str(EXAMPLE), "--steps", "30", "--seed", "9", "--density", "0.4"],

@@ -7,15 +7,15 @@ state and the order in which the callbacks were called."""
 
 import random
 import re
-from importlib import import_module
 from pathlib import Path
 
 import pytest
 
 from conformance.cases import OPTIONS, SUPERVISORS, SWAP_FIRST, SWAP_SECOND, batch, reference_vm
 from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.compiler.runtime_files import learning
 
-LEARN = import_module("swarmvm.runtime_py.swarmvm_learn")
+LEARN = learning()
 
 
 def both(vm):

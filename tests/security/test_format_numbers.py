@@ -1,7 +1,7 @@
 """Each format number is defined once: the compiler and its templates import it, never retype it.
 
 The image format's limits and fixed-point one live in runtime_py/swarmvm_format.py, the
-Kilobot's message length in swarmvm.compiler.naming; a retyped copy would silently disagree the day one
+Kilobot's message length in swarmvm.targets.kilobot; a retyped copy would silently disagree the day one
 changes. This test reads the compiler's source (generator/, with ``ast``: integer literals and
 strings other than docstrings, which only explain, for the large numbers) and the templates
 (every Jinja expression, and the text around them for the large numbers) for the values of those numbers, and fails on
@@ -14,6 +14,7 @@ from pathlib import Path
 
 from swarmvm.compiler import naming
 from swarmvm.compiler.runtime_files import TEMPLATES, image_format, python_vm
+from swarmvm.targets import kilobot
 
 F = image_format()
 GENERATOR = Path(naming.__file__).resolve().parents[1]     # generator/, the package swarmvm
@@ -27,17 +28,17 @@ for name, value in [("MAX_EVENTS", F.MAX_EVENTS), ("MAX_SUPERVISORS", F.MAX_SUPE
                     ("the states a STATE_WIDTHS width numbers", 1 << 8 * F.STATE_WIDTHS[0]),
                     ("the states a STATE_WIDTHS width numbers", 1 << 8 * F.STATE_WIDTHS[-1]),
                     ("the VM's seed for seed 0", python_vm().XorShift32(0).state),
-                    ("naming.KILOBOT_MESSAGE_BYTES", naming.KILOBOT_MESSAGE_BYTES)]:
+                    ("kilobot.KILOBOT_MESSAGE_BYTES", kilobot.KILOBOT_MESSAGE_BYTES)]:
     WATCHED.setdefault(value, []).append(name)
 # Values also looked for in the compiler's strings and a template's text outside Jinja (smaller
 # ones are everyday numbers there: [0-9] in a pattern, a comment's "9 characters").
-LARGE = {value for value in WATCHED if value > naming.KILOBOT_MESSAGE_BYTES}
+LARGE = {value for value in WATCHED if value > kilobot.KILOBOT_MESSAGE_BYTES}
 
 # {(file, value): (uses, why none of them is the format's number)}. A file listed here may use
 # the value that many times: one more use fails, and so does one fewer (keep this list exact).
 ALLOWED = {
     ("compiler/naming.py", 255): (1, "FILE_NAME_BYTES: file systems' limit on a file name"),
-    ("compiler/naming.py", 9): (1, "KILOBOT_MESSAGE_BYTES itself: the payload of kilolib's message_t"),
+    ("targets/kilobot.py", 9): (1, "KILOBOT_MESSAGE_BYTES itself: the payload of kilolib's message_t"),
     ("compiler/naming.py", 65535): (1, "message_code folds FNV-1a to 16 bits (ARGoS range-and-bearing codes)"),
     ("readers/supervisor_yaml.py", 255): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
     ("readers/supervisor_yaml.py", 256): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
@@ -107,7 +108,7 @@ def test_no_format_number_is_retyped():
                    for key, count in found.items() if ALLOWED.get(key, (0,))[0] != count}
     stale = {key: why for key, (count, why) in ALLOWED.items() if found.get(key, 0) != count}
     assert not unexplained and not stale, (
-        "retyped format numbers (import them from swarmvm_format / swarmvm.compiler.naming, or add the use to ALLOWED "
+        "retyped format numbers (import them from swarmvm_format / swarmvm.targets.kilobot, or add the use to ALLOWED "
         "saying why it is another number): %r; ALLOWED entries that no longer match: %r" % (unexplained, stale))
 
 
@@ -116,5 +117,5 @@ def test_the_scan_finds_a_retyped_number():
     assert list(_python_uses("n = read(high=%d)" % F.MAX_EVENTS)) == [F.MAX_EVENTS]
     assert list(_python_uses("W = re.compile(r'[a-z]{1,%d}')" % F.MAX_NAME_LENGTH)) == [F.MAX_NAME_LENGTH]
     assert list(_python_uses('"""A docstring may say %d."""' % F.Q15_ONE)) == []
-    assert list(_template_uses("{{ m[:%d] }}" % naming.KILOBOT_MESSAGE_BYTES)) == [naming.KILOBOT_MESSAGE_BYTES]
+    assert list(_template_uses("{{ m[:%d] }}" % kilobot.KILOBOT_MESSAGE_BYTES)) == [kilobot.KILOBOT_MESSAGE_BYTES]
     assert list(_template_uses("#define ONE %d\n" % F.Q15_ONE)) == [F.Q15_ONE]
