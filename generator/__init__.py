@@ -1,7 +1,8 @@
 """swarmvm: compiles synthesised supervisors into table-driven VMs for swarm robots.
 
-The pipeline, one module per stage: load (load_supervisor, load_automata) -> validate (inside
-the loaders, with errors.InputError) -> canonicalise (canonical) -> build tables (tables) ->
-serialise (image) -> render (render, targets)."""
+The pipeline, one subpackage per part (docs/architecture.md): read and validate (readers/,
+every defect a boundary.errors.InputError) -> canonicalise, build tables, serialise the image
+(compiler/) -> render a target (targets/, compiler.render); api.py is every verb as a typed
+function, cli/ the command line over it."""
 
 __version__ = "0.1.0"

@@ -1,6 +1,6 @@
 """A QEMU system emulator driven through its GDB stub (the GDB remote serial protocol over a
 Unix socket): start it halted, set breakpoints, run to them, read and write registers and
-memory. Enough to watch one function's calls in an unchanged program (footprint_cycles_m4)
+memory. Enough to watch one function's calls in an unchanged program (footprint.cycles_m4)
 without a cross gdb, which is not installed beside arm-none-eabi-gcc everywhere.
 
 Only the packets QEMU's stub answers for a Cortex-M are used: ``Z0``/``z0`` (breakpoints),

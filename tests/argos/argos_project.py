@@ -3,6 +3,7 @@ CMakeLists.txt, experiments run headless with their output read from the files A
 Shared by the tests in tests/argos/ and by `make argos-demo` (firmware/argos_demo.py)."""
 
 import os
+import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -130,3 +131,18 @@ def reference_trace(project, script, seed, options, robot):
         subprocess.run([*SWARMVM, "trace", str(project.supervisor), "--script", str(script), "--seed", str(seed)]
                        + ["--%s=%s" % item for item in (options or {}).items()], stdout=trace, check=True)
     return out.read_text().splitlines()
+
+
+SWITCH_PAGE = ROOT / "docs" / "compat.md"
+SWITCH_SECTION = "### Switching an OpenSwarm ARGoS project over"
+
+
+def switch_blocks():
+    """The fenced blocks of docs/compat.md's switch section, in order, as (language, text): the
+    steps the switch tests run as written."""
+    text = SWITCH_PAGE.read_text()
+    start = text.index(SWITCH_SECTION)
+    following = re.compile(r"^#{1,3} ", re.M).search(text, start + len(SWITCH_SECTION))
+    section = text[start:following.start() if following else len(text)]
+    return re.findall(r"^```(\w+)\n(.*?)^```$", section, re.M | re.S)
+

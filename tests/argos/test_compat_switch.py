@@ -20,6 +20,7 @@ from pathlib import Path
 
 import pytest
 
+from argos_project import switch_blocks
 from checkout import ROOT
 from swarmvm import api
 from swarmvm.compiler.pipeline import compile_inputs
@@ -28,7 +29,6 @@ from swarmvm.compat.switch import NOT_FOUND
 REFERENCE = ROOT.parent / "shared" / "reference"
 LAYOUTS = REFERENCE / "openswarm-layouts"
 COMPAT = ROOT / "docs" / "compat.md"
-SECTION = "### Switching an OpenSwarm ARGoS project over"
 SWARMVM = Path(sys.executable).parent / "swarmvm"
 STAND_IN = "Stands in for the unpublished %s of the published project (only its build files are published)."
 # (layout, its published VM, variant, how its controllers register a callback)
@@ -196,15 +196,6 @@ def test_nothing_is_written_when_one_file_cannot_be(tmp_path):
     assert snapshot(project) == before
 
 
-def documented_commands():
-    """The section's shell blocks, as written."""
-    text = COMPAT.read_text()
-    start = text.index(SECTION)
-    following = re.compile(r"^#{1,3} ", re.M).search(text, start + len(SECTION))
-    section = text[start:following.start() if following else len(text)]
-    return re.findall(r"^```sh\n(.*?)^```$", section, re.M | re.S)
-
-
 def stand_in_plugins(folder, argos_prefix):
     """Empty libraries for the projects' own ARGoS robot plugins (an e-puck with a charger, a
     leader e-puck), which the ARGoS here does not have: a folder for the linker's LIBRARY_PATH."""
@@ -255,7 +246,7 @@ def test_the_documented_switch_builds_the_published_layout_in_argos(argos_prefix
     env = user_environment(tmp_path, argos_prefix)
     assert subprocess.run(["python3", "-c", "import swarmvm"], env=env, capture_output=True).returncode != 0
     configure_before(project, argos_prefix, env)
-    blocks = documented_commands()
+    blocks = [text for language, text in switch_blocks() if language == "sh"]
     assert blocks[0].splitlines()[0] == "swarmvm compat-switch ."
     for text in blocks:
         result = subprocess.run(["bash", "-euo", "pipefail", "-c", text], cwd=project, env=env, capture_output=True,

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from argos_project import ARGOS_SH
+from argos_project import ARGOS_SH, switch_blocks
 
 from checkout import ROOT
 from swarmvm import api
@@ -32,8 +32,6 @@ pytestmark = [pytest.mark.emulator, pytest.mark.slow]   # builds and runs projec
 
 FIXTURE = Path(__file__).with_name("switch_project")
 REFERENCE = ROOT.parent / "shared" / "reference"
-COMPAT = ROOT / "docs" / "compat.md"
-SECTION = "### Switching an OpenSwarm ARGoS project over"
 MHSC_DEFINE = "SWARMVM_SCT_VARIANT_MHSC"
 SEEDS = (1, 2, 3)
 SUPERVISOR = Path("src/SCT_models/supervisor.yaml")
@@ -51,15 +49,6 @@ class Variant:
 
 VARIANTS = (Variant("energy", "openswarm-sct-cpp", "energy_worker.yaml", "worker", " charge"),
             Variant("mhsc", "openswarm-sct-cpp-mhsc", "hitl_leader.yaml", "leader", " respond"))
-
-
-def documented_blocks():
-    """The section's fenced blocks in order, as (language, text)."""
-    text = COMPAT.read_text()
-    start = text.index(SECTION)
-    following = re.compile(r"^#{1,3} ", re.M).search(text, start + len(SECTION))
-    section = text[start:following.start() if following else len(text)]
-    return re.findall(r"^```(\w+)\n(.*?)^```$", section, re.M | re.S)
 
 
 def write_project(variant, folder):
@@ -125,8 +114,8 @@ def tools():
 
 
 def test_the_section_has_the_steps_this_test_applies():
-    assert [language for language, _ in documented_blocks()] == ["sh", "sh", "text"]
-    assert documented_blocks()[0][1].startswith("swarmvm compat-switch .\n")
+    assert [language for language, _ in switch_blocks()] == ["sh", "sh", "text"]
+    assert switch_blocks()[0][1].startswith("swarmvm compat-switch .\n")
 
 
 @pytest.mark.parametrize("variant", VARIANTS, ids=lambda v: v.folder)
@@ -143,7 +132,7 @@ def test_the_documented_switch_runs_as_the_published_vm(argos_prefix, tools, var
     steps = published["log_1"].decode().count("\nstep ")
     assert steps == 6 * 400 and variant.calls.encode() in published["log_1"], published["log_1"][-2000:]
 
-    for language, text in documented_blocks():
+    for language, text in switch_blocks():
         if language == "sh":
             run(["bash", "-euo", "pipefail", "-c", text], project, env)
     assert "sct.cpp" not in (project / "src" / "utility" / "CMakeLists.txt").read_text()

@@ -1,11 +1,11 @@
-"""Every command README.md and docs/ show is run (issue 27's mechanism: docs that fail when copied
-do not come back). Each ```sh, ```bash or ```console block is run as one bash script (a `cd` in
-it carries on to its next lines), the blocks of a document in order, in one scratch folder per
-document, with the `swarmvm` and `python3` of the Python running the tests first on PATH: the
-editable install under `make test`, the wheel's under `make wheel-check` (scripts/check_wheel.sh).
-The scratch folder holds what the docs' paths assume of a user's folder: the repository's
-examples/ and tests/corpus/, `models/` (the energy worker's published models) and `supervisor.yaml`
-(the bundled example) for the robot pages.
+"""Every command README.md, docs/ and tests/README.md show is run (issue 27's mechanism: docs that
+fail when copied do not come back). Each ```sh, ```bash or ```console block is run as one bash
+script (a `cd` in it carries on to its next lines), the blocks of a document in order, in one
+scratch folder per document, with the `swarmvm` and `python3` of the Python running the tests
+first on PATH: the editable install under `make test`, the wheel's under `make wheel-check`
+(scripts/check_wheel.sh). The scratch folder holds what the docs' paths assume of a user's
+folder: the repository's examples/ and tests/corpus/, `models/` (the energy worker's published
+models) and `supervisor.yaml` (the bundled example) for the robot pages.
 
 A command that needs a robot, a toolchain the suite does not have, or hours is not run: an HTML
 comment right above its block says so and why,
@@ -24,7 +24,7 @@ import pytest
 
 from checkout import ROOT
 
-DOCUMENTS = [ROOT / "README.md"] + sorted((ROOT / "docs").rglob("*.md"))
+DOCUMENTS = [ROOT / "README.md", ROOT / "tests" / "README.md"] + sorted((ROOT / "docs").rglob("*.md"))
 SHELL_BLOCK = re.compile(r"((?:^<!-- not-run[^\n]*-->\n)*)^```(?:sh|bash|console)\n(.*?)^```", re.M | re.S)
 MARKER = re.compile(r'<!-- not-run(?: "([^"]+)")?: (.+?) -->')
 
@@ -94,6 +94,8 @@ def test_every_command_is_run_or_marked_why():
 
 def test_the_extraction_sees_the_blocks_and_markers():
     readme = list(blocks(ROOT / "README.md"))
-    assert any(c.startswith("swarmvm trace examples/") for b in readme for c in b.to_run())
+    assert readme[0].commands[0].startswith("make demo") and readme[0].to_run() == []
+    first_run = list(blocks(ROOT / "docs" / "command-line.md"))
+    assert any(c.startswith("swarmvm trace examples/") for b in first_run for c in b.to_run())
     kilobot = list(blocks(ROOT / "docs" / "robots" / "kilobot.md"))[0]
     assert kilobot.commands[-1].startswith("make KILOLIB=") and kilobot.to_run()[-1].startswith("cd kilobot_app")

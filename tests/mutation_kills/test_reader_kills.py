@@ -1,4 +1,4 @@
-"""The .xmd and .nza readers (generator/readers/ides_xmd.py, read_nza.py) pinned where `make mutation`
+"""The .xmd and .nza readers (generator/readers/ides_xmd.py, nadzoru_nza.py) pinned where `make mutation`
 found them unpinned (issue 29, docs/mutation.md): an element without its id refused naming the
 attribute, and an .nza event without ``shared`` private, one with it public."""
 
