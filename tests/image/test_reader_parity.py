@@ -382,10 +382,11 @@ ENDLESS = Path("/dev/zero")
 
 @pytest.mark.slow
 @pytest.mark.skipif(not ENDLESS.exists(), reason="needs /dev/zero (a Unix system)")
-def test_an_endless_file_is_refused_in_bounded_memory(readers):
+def test_an_endless_file_is_refused_in_bounded_memory(readers, tmp_path):
     """Python and C++ read at most the maximum image size + 1 bytes of /dev/zero: limited to
     300 MB (an unbounded read would exceed it) both refuse it with LENGTH; the command line
-    (any input file, read through swarmvm.boundary.errors.read_input) refuses it with one line."""
+    (any input file, opened through swarmvm.boundary.errors.open_input) refuses it in one line
+    without reading it, as a device, even under an image's name."""
     limit = 300 * 1024 * 1024
     probe = ("import resource, sys\n"
              "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
@@ -397,12 +398,15 @@ def test_an_endless_file_is_refused_in_bounded_memory(readers):
              "    print(int(exc.code))\n" % (limit, limit, str(RUNTIME_PY_DIR)))
     run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=60)
     assert (run.returncode, run.stdout.strip()) == (0, str(int(E.LENGTH))), run.stderr[-1000:]
+    image = tmp_path / "zero.svm"
+    image.symlink_to(ENDLESS)
     cli = ("import resource, sys\n"
            "resource.setrlimit(resource.RLIMIT_AS, (%d, %d))\n"
            "from swarmvm.cli.commands import main\n"
-           "main(['check', '/dev/zero'])\n" % (2 * limit, 2 * limit))
+           "main(['check', %r])\n" % (2 * limit, 2 * limit, str(image)))
     run = subprocess.run([sys.executable, "-c", cli], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 2 and run.stderr.startswith("swarmvm: error: /dev/zero: file is over"), run.stderr[-1000:]
+    assert run.returncode == 2 and run.stderr == "swarmvm: error: %s: is a character device, not a regular file\n" % (
+        image), run.stderr[-1000:]
     _, cpp_exe = readers
     # (AddressSanitizer reserves terabytes of address space: its own RSS limit bounds the C++ run.)
     run = subprocess.run([str(cpp_exe), "--load=/dev/zero"], capture_output=True, text=True, timeout=60,
