@@ -61,15 +61,15 @@ def expand_directories(paths: Sequence[str]) -> list[str]:
 
 
 def load(paths: Sequence[str]) -> Supervisors:
-    """One supervisor.yaml, or one or more automata (Nadzoru 2 ``.xml``, IDES ``.xmd``, Nadzoru
-    ``.nza``, libFAUDES ``.gen``; one local supervisor each, chosen by file extension; a
-    directory stands for the automata in it)."""
+    """One supervisor file (a reader of readers.SUPERVISOR_READERS: supervisor.yaml, Nadzoru's
+    C tables, a .svm image), or one or more automata (readers.READERS; one local supervisor
+    each, chosen by suffix; a directory stands for the automata in it)."""
     return load_as(paths, published=False)
 
 
 def load_as(paths: Sequence[str], published: bool) -> Supervisors:
-    """:func:`load`; ``published``: a supervisor.yaml read as the published VMs read it
-    (load_supervisor)."""
+    """:func:`load`; ``published``: a supervisor file read as the published VMs read it
+    (readers.supervisor_yaml)."""
     paths = expand_directories(paths)
     automata = [p for p in paths if os.path.splitext(p)[1].lower() in READERS]
     if automata and len(automata) != len(paths):

@@ -146,3 +146,11 @@ def switch_blocks():
     section = text[start:following.start() if following else len(text)]
     return re.findall(r"^```(\w+)\n(.*?)^```$", section, re.M | re.S)
 
+
+def needed_libraries(folder):
+    """The shared libraries a built project's plugins need (readelf's NEEDED entries)."""
+    needed = set()
+    for plugin in (folder / "build").rglob("*.so"):
+        dynamic = subprocess.run(["readelf", "-d", str(plugin)], capture_output=True, text=True, check=True).stdout
+        needed.update(re.findall(r"\(NEEDED\).*\[(.*)\]", dynamic))
+    return needed

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from argos_project import switch_blocks
+from argos_project import needed_libraries, switch_blocks
 from checkout import ROOT
 from swarmvm import api
 from swarmvm.compiler.pipeline import compile_inputs
@@ -228,14 +228,6 @@ def configure_before(project, argos_prefix, env):
     result = subprocess.run(["cmake", "-S", "src", "-B", "build", "-DARGOS_CMAKE_DIR=%s" % (
         argos_prefix / "share" / "argos3" / "cmake")], cwd=project, env=env, capture_output=True, text=True)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
-
-
-def needed_libraries(folder):
-    needed = set()
-    for plugin in (folder / "build").rglob("*.so"):
-        dynamic = subprocess.run(["readelf", "-d", str(plugin)], capture_output=True, text=True, check=True).stdout
-        needed.update(re.findall(r"\(NEEDED\).*\[(.*)\]", dynamic))
-    return needed
 
 
 @pytest.mark.emulator

@@ -13,7 +13,6 @@ as a user's does) and run again: every seed's ARGoS log (each robot's state stri
 calls at every step, then a summary) and position trace must be byte-identical."""
 
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -22,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from argos_project import ARGOS_SH, switch_blocks
+from argos_project import ARGOS_SH, needed_libraries, switch_blocks
 
 from checkout import ROOT
 from swarmvm import api
@@ -87,15 +86,6 @@ def run_argos(folder, seed):
     result = subprocess.run([str(ARGOS_SH), "run", "-n", "-c", "experiments/seed_%d.argos" % seed, "-l", "log.txt",
                              "-e", "err.txt"], cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     return result.returncode, (folder / "log.txt").read_bytes() + (folder / "err.txt").read_bytes() + result.stdout
-
-
-def needed_libraries(folder):
-    """The shared libraries the project's plugins need (readelf's NEEDED entries)."""
-    needed = set()
-    for plugin in (folder / "build").rglob("*.so"):
-        dynamic = subprocess.run(["readelf", "-d", str(plugin)], capture_output=True, text=True, check=True).stdout
-        needed.update(re.findall(r"\(NEEDED\).*\[(.*)\]", dynamic))
-    return needed
 
 
 @pytest.fixture(scope="module")
