@@ -1,7 +1,7 @@
 """The inspector's page at issue 26's scale: 20 robots x 10,000 steps of the bundled example
 (traces of the reference VM on random scripts, one seed per robot). Measures the time
 ``swarmvm inspect`` takes to write the page, its size, and in Debian's headless Chromium
-(tests/inspect/browser.py) the time from navigation to the page drawn (its script's ready mark),
+(tests/inspector/browser.py) the time from navigation to the page drawn (its script's ready mark),
 the time of 200 steps taken with the Right key, and of a jump to the last step. Issue 26's
 target: the page opens in under 2 s. Prints one line per figure; ``--json FILE`` also writes
 them. Without Chromium the browser's figures are left out, and a line says why."""

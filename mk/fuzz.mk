@@ -19,5 +19,4 @@ fuzz: setup
 	$(PYTHON) tests/fuzz/campaign.py --seconds $(FUZZ_SECONDS) --work $(FUZZ_DIR) $(FUZZERS)
 	HYPOTHESIS_PROFILE=long $(PYTHON) -m pytest $(TRUST_BOUNDARY_TESTS)
 
-TRUST_BOUNDARY_TESTS = tests/security tests/properties/test_hostile_text.py tests/inputs/test_output_faults.py \
-	tests/inputs/test_readers_generative.py tests/cli/test_terminal_escaping.py
+TRUST_BOUNDARY_TESTS = tests/boundary tests/properties/test_hostile_text.py tests/cli/test_terminal_escaping.py

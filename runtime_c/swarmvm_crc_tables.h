@@ -2,7 +2,7 @@
  * SVM_CRC_TABLE, off on microcontrollers): T[x] is the sum from 0 after byte x, and T2, T3, T4
  * after byte x and then one, two, three zero bytes, so that a step takes two or four bytes.
  * Generated from runtime_py/swarmvm_format.py by scripts/format_headers.py: do not edit.
- * After a change of the format run `make format-headers`: tests/image/test_format_headers.py
+ * After a change of the format run `make format-headers`: tests/compiler/test_format_headers.py
  * fails while this copy differs from what the script writes.
  */
 #ifndef SWARMVM_CRC_TABLES_H

@@ -1,6 +1,6 @@
 /* swarmvm table image format (docs/image-format.md), for the C runtime (swarmvm.h includes it).
  * Generated from runtime_py/swarmvm_format.py by scripts/format_headers.py: do not edit.
- * After a change of the format run `make format-headers`: tests/image/test_format_headers.py
+ * After a change of the format run `make format-headers`: tests/compiler/test_format_headers.py
  * fails while this copy differs from what the script writes.
  */
 #ifndef SWARMVM_FORMAT_H

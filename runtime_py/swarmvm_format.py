@@ -4,8 +4,8 @@ Magic, version, header fields and their offsets, flags, section order, limits, t
 reader gives a refused image, the checksum, the writer's assembly and the reader. The generator
 (generator/compiler/image.py) writes images with :func:`assemble`; the Python VM (swarmvm_vm.py) reads
 them with :meth:`Image.parse`. The C and C++ runtimes keep their own constants (a
-microcontroller cannot import this file); tests/image/test_format_constants.py checks them
-against these, and tests/image/test_reader_parity.py checks that all three readers give the
+microcontroller cannot import this file); tests/compiler/test_format_constants.py checks them
+against these, and tests/compiler/test_reader_parity.py checks that all three readers give the
 same code for the same bad image. Standard library only: it ships beside swarmvm_vm.py, onto a
 robot too.
 """

@@ -58,7 +58,7 @@ studies="$(cd "$work" && "$work/venv/bin/swarmvm" sim uav 2>&1)" && status=0 || 
 [ "$status" = 2 ] && [ "$studies" = 'swarmvm: error: the studies need numpy, pandas, pyarrow, dask, tqdm, matplotlib: pip install "swarmvm[studies]"' ] \
   || { echo "wheel-check: 'swarmvm sim uav' without the studies extra: status $status, $studies"; exit 1; }
 (cd "$work" && "$work/venv/bin/python" -m pytest -p no:cacheprovider --rootdir "$root" \
-  "$root/tests/cli" "$root/tests/inputs" "$root/tests/golden" "$root/tests/pipuck" "$root/tests/python" \
+  "$root/tests/cli" "$root/tests/boundary" "$root/tests/golden" "$root/tests/targets/pipuck" "$root/tests/python" \
   "$root/tests/docs" \
   "$root/tests/footprint/test_footprint_ci.py")   # every command README.md and docs/ show, run with the wheel's
                                                   # swarmvm; the CI recipes, and --cycles building the board it ships

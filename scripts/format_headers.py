@@ -7,7 +7,7 @@ A microcontroller cannot import runtime_py/swarmvm_format.py, so the C runtime r
 version, magic, header size and field offsets, flags, limits, Q15 one, checksum seed, stream
 chunk size and result codes from runtime_c/swarmvm_format.h, and the C++ runtime from
 runtime_cpp/swarmvm_format.hpp. Both are written here, from the module itself, and committed;
-tests/image/test_format_headers.py writes them again in memory and fails when a committed copy
+tests/compiler/test_format_headers.py writes them again in memory and fails when a committed copy
 differs, as the golden copies do (``make format-headers`` rewrites them after a change of the
 format).
 
@@ -97,7 +97,7 @@ def c_literal(value: int) -> str:
 
 def _banner(comment: str) -> list[str]:
     return [comment + " Generated from runtime_py/swarmvm_format.py by scripts/format_headers.py: do not edit.",
-            comment + " After a change of the format run `make format-headers`: tests/image/test_format_headers.py",
+            comment + " After a change of the format run `make format-headers`: tests/compiler/test_format_headers.py",
             comment + " fails while this copy differs from what the script writes."]
 
 

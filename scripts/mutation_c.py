@@ -30,8 +30,8 @@ MODULE = "runtime_c/swarmvm.c"
 # The quick host tests that compile swarmvm.c. The conformance builds come first: half a second
 # each, they kill most mutants; the kills written against the survivors come last, as they
 # only matter to mutants the others let through.
-JUDGE = ["tests/conformance/test_c_host.py", "tests/image/test_reader_parity.py", "tests/image/test_image_stream.py",
-         "tests/image/test_format_constants.py",
+JUDGE = ["tests/conformance/test_c_host.py", "tests/compiler/test_reader_parity.py", "tests/compiler/test_image_stream.py",
+         "tests/compiler/test_format_constants.py",
          "tests/fuzz/test_fuzz_regressions.py::test_c_runtime_cases_and_seeds_replay_clean",
          "tests/mutation_kills_c/test_c_runtime_kills.py"]
 # The limits the judge's builds compile swarmvm.c with (each selects other code: a mask of 1, 2

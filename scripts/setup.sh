@@ -3,7 +3,7 @@
 # emulators and build tools from Debian's packages (with what building ARGoS from source needs:
 # xz-utils, Lua 5.3, FreeImage; scripts/argos.sh builds it; and clang's libFuzzer and sanitizer
 # runtimes, libclang-rt-14-dev, for the C fuzzer: tests/fuzz; Chromium and its driver for the
-# inspector page's browser tests: tests/inspect), then a virtual environment of the
+# inspector page's browser tests: tests/inspector), then a virtual environment of the
 # project's own (.venv/, or $VENV) holding swarmvm (editable) and its test dependencies.
 # Debian's system Python refuses `pip install` (PEP 668), hence the venv; every make target
 # uses it, and `.venv/bin/swarmvm` (or `source .venv/bin/activate`) is the installed CLI.

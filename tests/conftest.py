@@ -15,7 +15,7 @@ os.environ["PATH"] = os.path.dirname(sys.executable) + os.pathsep + os.environ.g
 from swarmvm.compiler.runtime_files import python_vm  # noqa: E402
 
 # Hypothesis (the property tests of tests/properties/ and docs/conformance.md, the generative
-# tests of the trust boundary in tests/security/, tests/inputs/ and tests/cli/): in CI the same
+# tests of the trust boundary in tests/boundary/, tests/boundary/ and tests/cli/): in CI the same
 # few examples every run (derandomized, no example database, no deadline: a compiler may take
 # seconds); HYPOTHESIS_PROFILE=long (`make fuzz`) draws many more, at random.
 _SLOW_EXAMPLES = [HealthCheck.too_slow, HealthCheck.data_too_large]

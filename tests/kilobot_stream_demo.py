@@ -1,5 +1,5 @@
 """Stream a new supervisor into a running Kilobot program, in simavr (docs/image-format.md,
-"Streaming an image"). Shared by tests/kilobot/test_kilobot_swap.py and `make kilobot-swap-demo`.
+"Streaming an image"). Shared by tests/targets/kilobot/test_kilobot_swap.py and `make kilobot-swap-demo`.
 
 The program is the generated Kilobot application of supervisor A built with SVM_STREAM and
 linked with the real kilolib, with a test controller: each check follows a fixed pattern of the

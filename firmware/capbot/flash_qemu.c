@@ -4,7 +4,7 @@
  * 4 KB, write block 4) simulated as NOR flash in RAM, with the nRF flash driver's rules: an
  * erase takes whole aligned pages and sets them to 0xFF; a write takes whole aligned 32-bit
  * words and can only clear bits; out of range or unaligned is -EINVAL. Not a driver: for the
- * store's power-cut test (tests/capbot/test_capbot_store.py), it also stops doing anything
+ * store's power-cut test (tests/targets/capbot/test_capbot_store.py), it also stops doing anything
  * after flash_qemu_budget operations (bytes programmed, page erases) as a power cut would,
  * and counts a word programmed twice between erases (the nRF52840 allows it a limited number
  * of times only) in flash_qemu_misuse.

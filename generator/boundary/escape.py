@@ -6,7 +6,7 @@ Graphviz, Markdown, HTML, the terminal) they pass through the function for that 
 and nowhere else. Each function returns text that, placed in its context, is read back as data:
 it cannot end a comment or string, start a command, continue a line or move the cursor.
 
-Templates reach these only as Jinja filters (:data:`FILTERS`); tests/security/test_template_filters.py
+Templates reach these only as Jinja filters (:data:`FILTERS`); tests/boundary/test_template_filters.py
 fails a template that writes a value through no filter. Text a context cannot represent raises
 :class:`UnsafeText`, a ValueError, which the callers turn into an InputError naming the input.
 

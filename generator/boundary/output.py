@@ -26,7 +26,7 @@ installed only when called from the main thread; called from another thread, not
 (Python delivers signals to the main thread only, so they do not interrupt the write).
 
 Every file operation goes through :data:`OPS` (a :class:`FileOps`), the seam that
-tests/inputs/test_output_faults.py wraps to make the k-th operation fail."""
+tests/boundary/test_output_faults.py wraps to make the k-th operation fail."""
 
 import os
 import signal

@@ -17,7 +17,7 @@ import pytest
 
 from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
-from capbot.app_environment import environment_script
+from targets.capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS, batch
 from swarmvm.compiler.runtime_files import image_format, python_vm
 from checkout import ROOT

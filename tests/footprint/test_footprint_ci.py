@@ -15,7 +15,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import threading
 import tomllib
 import xml.etree.ElementTree as ET
@@ -24,12 +23,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from checkout import EXAMPLE, FIRMWARE, ROOT
+from checkout import EXAMPLE, ROOT
 from footprint_images import KILOBOT_INDIRECT
-
-sys.path.insert(0, str(FIRMWARE.parent / "tests" / "kilobot"))
-
-from needs import board_or_skip, kilolib_or_skip  # noqa: E402
+from targets.kilobot.needs import board_or_skip, kilolib_or_skip
 
 DOC = ROOT / "docs" / "footprint.md"
 YAML_BLOCK = re.compile(r"^```yaml\n(.*?)^```", re.M | re.S)

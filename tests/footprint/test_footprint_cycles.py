@@ -5,18 +5,14 @@ is caught by a `cycles` budget, and the figures are compared with a baseline lik
 The CapBot (Cortex-M4, QEMU) side: test_footprint_cycles_m4.py."""
 
 import json
-import sys
 
 import pytest
 
-from checkout import EXAMPLE, FIRMWARE
+from checkout import EXAMPLE
 from footprint_images import KILOBOT_INDIRECT, SLOWER_LOOPS, event_script, random_event_script, swarmvm_footprint
 
 from swarmvm import api
-
-sys.path.insert(0, str(FIRMWARE.parent / "tests" / "kilobot"))
-
-from needs import board_or_skip  # noqa: E402
+from targets.kilobot.needs import board_or_skip
 
 INDIRECT = [arg for declaration in KILOBOT_INDIRECT for arg in ("--indirect", declaration)]
 SUPERVISOR = EXAMPLE

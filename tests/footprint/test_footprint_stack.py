@@ -22,9 +22,8 @@ from swarmvm import api
 from swarmvm.footprint.measure import Limits
 
 sys.path.insert(0, str(FIRMWARE / "kilobot"))
-sys.path.insert(0, str(FIRMWARE.parent / "tests" / "kilobot"))
 
-from needs import board, board_or_skip  # noqa: E402
+from targets.kilobot.needs import board, board_or_skip  # noqa: E402
 
 INDIRECT = [arg for declaration in KILOBOT_INDIRECT for arg in ("--indirect", declaration)]
 

@@ -8,7 +8,7 @@ keywords, ``stream``, ``x`` beside ``_x``/``received_x``, the runtime's ``svm``/
 target either a clear project error (an InputError of one line, and nothing written), or code
 that compiles: py_compile for python and pipuck; the c and kilobot targets' sources, as their
 generated Makefiles list them, with its limits, under the strict warnings of
-tests/c/test_c_warnings.py (gcc; avr-gcc with kilolib's flags against the real kilolib);
+tests/targets/c/test_c_warnings.py (gcc; avr-gcc with kilolib's flags against the real kilolib);
 capbot's sources with arm-none-eabi-gcc against firmware/capbot's Zephyr and CapBot
 declarations; argos' controller with g++ -fsyntax-only against the real ARGoS headers.
 Compiling takes seconds, so this target runs few iterations."""
@@ -26,11 +26,11 @@ from pathlib import Path
 
 import atheris
 
-from argos.argos_project import find_argos
-from c.test_c_warnings import ARM, COMPILERS, compile_only
+from targets.argos.argos_project import find_argos
+from targets.c.test_c_warnings import ARM, COMPILERS, compile_only
 from conformance.qemu_harness import CAPBOT
 from fuzz.readers import refused
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from swarmvm import api
 from swarmvm.boundary.errors import InputError
 from swarmvm.models.export import to_yaml

@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from swarmvm.compiler.runtime_files import RUNTIME_C
 
 from imports import ROOT

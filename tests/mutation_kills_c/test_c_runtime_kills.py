@@ -14,7 +14,7 @@ from conformance import c_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch, supervisor_yaml
 from conformance.test_c_host import _with_names
-from image.test_reader_parity import _edited, _set
+from compiler.test_reader_parity import _edited, _set
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.compiler.runtime_files import RUNTIME_C, image_format
 

@@ -18,13 +18,13 @@ import pytest
 from hypothesis import event, example, given, settings
 from hypothesis import strategies as st
 
-from argos.argos_project import NO_ARGOS, find_argos
+from targets.argos.argos_project import NO_ARGOS, find_argos
 from conformance import c_harness, qemu_harness
 from conformance._c_compare import mismatches
 from conformance.cases import Batch, Run, reference, supervisor_yaml
 from conformance.cpp_harness import FLAGS, runs_text
 from conformance.file_oracle import FileOracle
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from properties.strategies import MODEL_NAMES, RUN_OPTIONS, SupervisorSet, scripts, supervisor_sets
 from swarmvm import api
 from swarmvm.compiler.pipeline import compile_inputs
@@ -195,7 +195,7 @@ BUILDS = {"python": build_python, "pipuck": build_pipuck, "c": build_c, "kilobot
 
 @pytest.fixture(scope="module")
 def tools():
-    """The real kilolib and ARGoS (found or built as tests/kilobot and tests/argos do); without
+    """The real kilolib and ARGoS (found or built as tests/targets/kilobot and tests/targets/argos do); without
     them the test skips, except in CI (CI=true), where it fails."""
     status, prefix, stderr = find_argos()
     if status == NO_ARGOS and os.environ.get("CI") != "true":

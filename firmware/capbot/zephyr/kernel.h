@@ -1,6 +1,6 @@
 /*
  * STAND-IN, DECLARATIONS ONLY: the few Zephyr kernel names a generated CapBot main.c uses, so
- * that tests can compile it without the nRF Connect SDK (tests/capbot/test_capbot_target.py). Not
+ * that tests can compile it without the nRF Connect SDK (tests/targets/capbot/test_capbot_target.py). Not
  * Zephyr; the real build uses Zephyr's own <zephyr/kernel.h>.
  */
 #ifndef ZEPHYR_STANDIN_KERNEL_H

@@ -17,7 +17,7 @@
  * nRF52840's word). On flash a write that is not whole aligned blocks, or that programs a byte
  * twice between erases, is counted and printed at the end ("misuse N").
  *
- * Built with -DPROBE_ZEPHYR (QEMU mps2-an386, tests/capbot/test_capbot_store.py) the one medium
+ * Built with -DPROBE_ZEPHYR (QEMU mps2-an386, tests/targets/capbot/test_capbot_store.py) the one medium
  * is "zephyr": the CapBot's binding (runtime_c/swarmvm_store_zephyr.c) over the Zephyr flash
  * map stand-in of firmware/capbot/flash_qemu.c, which cuts after flash_qemu_budget operations.
  */

@@ -12,7 +12,7 @@ import subprocess
 import pytest
 
 from conformance import qemu_harness
-from capbot.app_environment import environment_script
+from targets.capbot.app_environment import environment_script
 from conformance.cases import SUPERVISORS
 from checkout import ROOT
 from corrupted import corrupt_compiled_in_image

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from kilobot.needs import board, board_or_skip, kilolib_or_skip
+from targets.kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.boundary.output import write_outputs
 from swarmvm.compiler.runtime_files import RUNTIME_PY_DIR
@@ -27,7 +27,7 @@ from swarmvm.targets import generate
 sys.path.insert(0, str(RUNTIME_PY_DIR))
 from swarmvm_format import crc16  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 FORAGER = ROOT / "examples" / "learning" / "supervisor.yaml"
 NAME = "forager"
 REWARDS = {"near": 1.5, "far": 4.0, "wait": -0.1, "walk": -1.0, "run": -2.0, "charge": -0.5}

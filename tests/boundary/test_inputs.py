@@ -12,7 +12,7 @@ from swarmvm.boundary.errors import MAX_BYTES
 from swarmvm.readers.supervisor_yaml import load_supervisor
 from swarmvm.compiler.pipeline import compile_inputs
 
-INPUTS = Path(__file__).parent
+INPUTS = Path(__file__).parent / "inputs"
 MALFORMED = sorted((INPUTS / "malformed").glob("*.yaml"))
 CORPUS = Path(__file__).parent.parent / "corpus"
 

@@ -2,7 +2,7 @@
 (docs/compat.md, "Switching an OpenSwarm ARGoS project over"), for both published variants of
 sct.h, in real ARGoS.
 
-For each variant, a project in the published layout (tests/argos/switch_project/: the common
+For each variant, a project in the published layout (tests/targets/argos/switch_project/: the common
 CMake files, `utility` library and loop functions, plus the variant's controller and experiment,
 written here in the published style and using the variant's API) gets the published sct.h and
 sct.cpp of that variant from ../shared/reference/ (oracles, copied into the scratch project only)

@@ -83,7 +83,7 @@ def xml_with_events(count):
 
 
 def test_255_events_load_and_256_do_not_in_every_format(tmp_path):
-    from inputs.test_hostile_inputs import gen_with_events
+    from boundary.test_hostile_inputs import gen_with_events
     for suffix, write in ((".gen", gen_with_events), (".xml", xml_with_events)):
         (tmp_path / ("at" + suffix)).write_text(write(255))
         status, output = check(tmp_path / ("at" + suffix))

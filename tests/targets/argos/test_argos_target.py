@@ -1,7 +1,7 @@
 """`swarmvm gen --target argos`: the generated e-puck controller carries the same image as the
 .svm, its generated base class binds every event by name and sends the public ones' messages,
 the user's subclass holds one stub per private event and nothing generated, generation is
-deterministic, and a user-edited controller is never overwritten but is checked for drift. Building and running it in real ARGoS: the other tests in tests/argos/."""
+deterministic, and a user-edited controller is never overwritten but is checked for drift. Building and running it in real ARGoS: the other tests in tests/targets/argos/."""
 
 import re
 import subprocess

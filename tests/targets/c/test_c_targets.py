@@ -13,7 +13,7 @@ import pytest
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, Run, batch, reference, supervisor_yaml
 from corrupted import corrupt_compiled_in_image
-from kilobot.needs import board, board_or_skip, kilolib_or_skip
+from targets.kilobot.needs import board, board_or_skip, kilolib_or_skip
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import TARGETS
 from target_builds import build_in_place

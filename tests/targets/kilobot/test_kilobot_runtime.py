@@ -16,7 +16,7 @@ import re
 
 import pytest
 
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from kilobot_stream_demo import RUNNING, Program, reference, split
 from swarmvm.compiler.runtime_files import RUNTIME_C
 

@@ -1,4 +1,4 @@
-"""One headless Chromium per module for the inspector's browser tests (tests/inspect/browser.py)."""
+"""One headless Chromium per module for the inspector's browser tests (tests/inspector/browser.py)."""
 
 import os
 

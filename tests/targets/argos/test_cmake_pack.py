@@ -13,7 +13,7 @@ import pytest
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.compiler.runtime_files import RUNTIME_CPP
 
-CORPUS = Path(__file__).resolve().parents[1] / "corpus"
+CORPUS = Path(__file__).resolve().parents[2] / "corpus"
 
 
 @pytest.mark.skipif(shutil.which("cmake") is None, reason="cmake not installed")

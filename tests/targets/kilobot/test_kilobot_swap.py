@@ -10,7 +10,7 @@ import subprocess
 
 import pytest
 
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from kilobot_stream_demo import CORPUS, RUNNING, STRICT, SUPERVISOR_A, SUPERVISOR_B, Program, reference, split
 from swarmvm.compiler.image import chunks
 from swarmvm.compiler.pipeline import compile_inputs

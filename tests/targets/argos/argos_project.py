@@ -1,6 +1,6 @@
 """Generated ARGoS projects built and run in real ARGoS: each project built with its own
 CMakeLists.txt, experiments run headless with their output read from the files ARGoS writes.
-Shared by the tests in tests/argos/ and by `make argos-demo` (firmware/argos_demo.py)."""
+Shared by the tests in tests/targets/argos/ and by `make argos-demo` (firmware/argos_demo.py)."""
 
 import os
 import re

@@ -1,4 +1,4 @@
-// The C++ side of tests/image/test_reader_parity.py: prints 0 when swarmvm::Image::parse accepts
+// The C++ side of tests/compiler/test_reader_parity.py: prints 0 when swarmvm::Image::parse accepts
 // an image file named on the command line, else its ImageError's code, one line per file. Each
 // image sits in a heap buffer of exactly its size, so that a sanitizer build catches any read
 // past it. An argument --load=PATH goes through Image::load instead (bounded read of a file).

@@ -11,7 +11,7 @@ import pytest
 
 from conformance import c_harness
 from conformance.cases import SUPERVISORS, batch
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.compiler.runtime_files import RUNTIME_C
 from checkout import FIRMWARE

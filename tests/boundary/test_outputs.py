@@ -1,6 +1,6 @@
 """Where the output cannot be written: one line naming the path and `-o`, exit status 2, and
 nothing written (no partial output, no temporary file left behind). What happens when a file
-operation fails half way, or a signal comes, is tests/inputs/test_output_faults.py."""
+operation fails half way, or a signal comes, is tests/boundary/test_output_faults.py."""
 
 import os
 import socket

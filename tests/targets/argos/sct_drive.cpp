@@ -1,4 +1,4 @@
-// Drives an SCT/SCTPub through the published API only, for tests/argos/test_sct_exact_cpp.py:
+// Drives an SCT/SCTPub through the published API only, for tests/targets/argos/test_sct_exact_cpp.py:
 // built once against the published sct.cpp (the oracle) and once against swarmvm's sct.h, the
 // two outputs must be equal. Every event gets a callback the published way (member functions);
 // checks have side effects (they draw from the controller's own generator and clear flags that

@@ -11,7 +11,7 @@ import pytest
 from conformance import c_harness
 from conformance._c_compare import mismatches
 from conformance.cases import SUPERVISORS, batch
-from kilobot.needs import board, board_or_skip
+from targets.kilobot.needs import board, board_or_skip
 from kilobot_stream_demo import SUPERVISOR_B, Program
 from swarmvm.compiler.pipeline import compile_inputs
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from checkout import EXAMPLE, ROOT
-from kilobot.needs import kilolib_or_skip
+from targets.kilobot.needs import kilolib_or_skip
 from swarmvm.boundary.output import write_outputs
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets import generate

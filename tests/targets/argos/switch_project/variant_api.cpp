@@ -1,5 +1,5 @@
 // The API differences between the two variants of swarmvm's sct.h, for
-// tests/argos/test_sct_switch.py. Built as it is, it registers callbacks the way its variant does
+// tests/targets/argos/test_sct_switch.py. Built as it is, it registers callbacks the way its variant does
 // (SWARMVM_SCT_VARIANT_MHSC defined or not), prints the state string, then registers an event the
 // supervisor lacks and prints what that throws. With -DOTHER_VARIANT it also registers a
 // callback the other variant's way, which must not compile.

@@ -1,4 +1,4 @@
-/* The C side of tests/image/test_reader_parity.py: prints svm_load's result code (SVM_OK or an
+/* The C side of tests/compiler/test_reader_parity.py: prints svm_load's result code (SVM_OK or an
  * SVM_ERR_* code) for each image file named on the command line, one per line. Each image sits
  * in a heap buffer of exactly its size, so that a sanitizer build catches any read past it. */
 #include <stdio.h>

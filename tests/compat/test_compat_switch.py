@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from argos_project import needed_libraries, switch_blocks
+from targets.argos.argos_project import needed_libraries, switch_blocks
 from checkout import ROOT
 from swarmvm import api
 from swarmvm.compiler.pipeline import compile_inputs
