@@ -93,16 +93,26 @@ inline Image load_beside(const std::string& path) {
     const std::string image_path = image_path_for(path);
     if (image_path == path) return Image::load(path);
     const std::string fix = ": run swarmvm pack " + path + " -o " + image_path;
-    if (!std::ifstream(image_path, std::ios::binary)) {
+    // Both files through the runtime's input layer (read_regular_file): a FIFO or a device under
+    // either name is refused at once, never waited on.
+    std::string raw;
+    try {
+        raw = read_regular_file(image_path, kMaxImageSize, "table image");
+    } catch (const FileError& error) {
+        if (error.opened()) throw;
         throw std::runtime_error("cannot read table image " + image_path + " for " + path + fix);
     }
-    Image image = Image::load(image_path);
-    std::ifstream yaml(path, std::ios::binary);
-    if (!image.source_digest.empty() && yaml) {
-        const std::string bytes((std::istreambuf_iterator<char>(yaml)), std::istreambuf_iterator<char>());
-        if (detail::sha256(bytes) != image.source_digest) {
-            throw std::runtime_error(image_path + " is stale: it was packed from another version of " + path + fix);
-        }
+    Image image = Image::parse(reinterpret_cast<const std::uint8_t*>(raw.data()), raw.size());
+    if (image.source_digest.empty()) return image;
+    std::string bytes;
+    try {
+        bytes = read_regular_file(path, kMaxSourceFileSize, "supervisor file");
+    } catch (const FileError& error) {
+        if (error.opened()) throw;
+        return image;       // no supervisor.yaml beside the image (a robot carries the image alone)
+    }
+    if (detail::sha256(bytes) != image.source_digest) {
+        throw std::runtime_error(image_path + " is stale: it was packed from another version of " + path + fix);
     }
     return image;
 }

@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -19,6 +21,13 @@
 #include <vector>
 
 #include "swarmvm_format.hpp"
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#define SWARMVM_POSIX_FILES 1
+#endif
 
 // Keeps a rare path out of a hot loop (GCC and Clang; elsewhere the compiler decides).
 #if defined(__GNUC__) || defined(__clang__)
@@ -53,6 +62,89 @@ public:
 private:
     ErrorCode code_;
 };
+
+// The C++ runtime's input layer (docs/security.md, "The input layer"): every file the runtime
+// reads (Image::load, load_beside's image and supervisor.yaml) goes through read_regular_file.
+// A path that cannot be opened, or is not a regular file, is a FileError: one line naming it.
+class FileError : public std::runtime_error {
+public:
+    FileError(const std::string& what, bool opened) : std::runtime_error(what), opened_(opened) {}
+    // false: the file could not be opened at all (missing, unreadable); true: opened and refused.
+    bool opened() const { return opened_; }
+
+private:
+    bool opened_;
+};
+
+// A supervisor.yaml is read up to the compiler's input limit (swarmvm.boundary.errors.MAX_BYTES):
+// one larger cannot be the file an image was packed from.
+constexpr std::size_t kMaxSourceFileSize = std::size_t{1} << 20;
+
+namespace detail {
+
+// `text` with each control character as \xHH, so that a message naming a path stays one line.
+inline std::string printable(const std::string& text) {
+    static const char hex[] = "0123456789abcdef";
+    std::string out;
+    for (unsigned char c : text) {
+        if (c < 0x20 || c == 0x7F) {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 0xF];
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out;
+}
+
+}  // namespace detail
+
+// At most `limit` + 1 bytes of the regular file `path` (`what` names it in messages: "table
+// image"), so that the caller refuses a longer file in its own words (an image: LENGTH) without
+// reading it all. Opened with O_NONBLOCK and checked with fstat before any read: a FIFO with no
+// writer (which a plain open waits on for ever), a device (/dev/zero), a folder or a socket is
+// refused at once, FileError "what PATH: is a FIFO, not a regular file". Without POSIX (no FIFOs
+// or devices by path there), a bounded std::ifstream read.
+inline std::string read_regular_file(const std::string& path, std::size_t limit, const std::string& what) {
+    const std::string name = what + " " + detail::printable(path);
+    std::string bytes(limit + 1, '\0');
+    std::size_t got = 0;
+#if defined(SWARMVM_POSIX_FILES)
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throw FileError("cannot read " + name + " (" + std::strerror(errno) + ")", false);
+    struct stat info {};
+    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+        const int error = errno;
+        const mode_t mode = info.st_mode;
+        ::close(fd);
+        if (mode == 0) throw FileError("cannot read " + name + " (" + std::strerror(error) + ")", true);
+        const char* kind = S_ISDIR(mode) ? "a folder" : S_ISCHR(mode) ? "a character device"
+                         : S_ISBLK(mode) ? "a block device" : S_ISFIFO(mode) ? "a FIFO"
+                         : S_ISSOCK(mode) ? "a socket" : "an unknown kind of file";
+        throw FileError(name + ": is " + kind + ", not a regular file", true);
+    }
+    while (got < bytes.size()) {
+        const ssize_t n = ::read(fd, &bytes[got], bytes.size() - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int error = errno;
+            ::close(fd);
+            throw FileError("cannot read " + name + " (" + std::strerror(error) + ")", true);
+        }
+        if (n == 0) break;
+        got += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+#else
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw FileError("cannot read " + name, false);
+    in.read(&bytes[0], static_cast<std::streamsize>(bytes.size()));
+    got = static_cast<std::size_t>(in.gcount());
+#endif
+    bytes.resize(got);
+    return bytes;
+}
 
 // A callback registered under a name the supervisor does not have (never mapped to event 0).
 class UnknownEvent : public std::invalid_argument {
@@ -201,14 +293,11 @@ struct Image {
     // Checks and decodes an image; throws ImageError naming the first defect.
     static Image parse(const std::uint8_t* data, std::size_t size);
 
-    // Reads a .svm file (at most kMaxImageSize + 1 bytes: a huge or endless file is refused
-    // without reading it all) and parses it. std::runtime_error when the file cannot be read.
+    // Reads a .svm file through read_regular_file (a regular file only; at most kMaxImageSize + 1
+    // bytes: a huge file is refused, LENGTH, without reading it all) and parses it. FileError (a
+    // std::runtime_error) when the file cannot be read or is not a regular file.
     static Image load(const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw std::runtime_error("cannot read table image " + path);
-        std::vector<char> bytes(kMaxImageSize + 1);
-        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        bytes.resize(static_cast<std::size_t>(in.gcount()));
+        const std::string bytes = read_regular_file(path, kMaxImageSize, "table image");
         return parse(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     }
 

@@ -17,6 +17,9 @@ else:
     import swarmvm_vm
 
 STDIN = "-"     # the script name that means standard input, as for ``swarmvm trace --script``
+# An app's event script is read whole: 16 MiB holds over a million steps of a few events each
+# (docs/limits.md); a longer one is refused in one line, not read.
+MAX_SCRIPT_BYTES = 16 << 20
 
 # The facts the compiler's command line states too (swarmvm.cli): defined here, in the runtime a
 # robot carries without the compiler, and imported by the compiler (runtime_files.python_app).
@@ -89,10 +92,15 @@ def read_script(path: str, events: Iterable[str]) -> List[Row]:
     standard input; an unknown name or an unreadable file ends the app with one line."""
     try:
         if path == STDIN:
-            lines = sys.stdin.read().splitlines()
+            text = sys.stdin.read(MAX_SCRIPT_BYTES + 1)     # bounded as a file is
+            if len(text) > MAX_SCRIPT_BYTES:
+                raise SystemExit("%s: cannot read the script (over %d characters)" % (path, MAX_SCRIPT_BYTES))
+            lines = text.splitlines()
         else:
-            with open(path) as handle:
-                lines = handle.read().splitlines()
+            raw = swarmvm_vm.read_file(path, MAX_SCRIPT_BYTES)     # the runtime's input layer: regular files, bounded
+            if len(raw) > MAX_SCRIPT_BYTES:
+                raise SystemExit("%s: cannot read the script (over %d bytes)" % (path, MAX_SCRIPT_BYTES))
+            lines = raw.decode("utf-8").splitlines()
     except (OSError, UnicodeDecodeError) as exc:
         raise SystemExit("%s: cannot read the script (%s)" % (path, getattr(exc, "strerror", None) or exc))
     rows: List[Row] = []

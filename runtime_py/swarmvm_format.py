@@ -16,10 +16,12 @@ import functools
 import itertools
 import operator
 import os
+import stat
 import struct
 from typing import Any, Dict, List, Literal, NamedTuple, Optional, Tuple, Union
 
-__all__ = ["ErrorCode", "Header", "Image", "ImageError", "Source", "assemble", "crc16", "read_header"]
+__all__ = ["ErrorCode", "FileKindError", "Header", "Image", "ImageError", "Source", "assemble", "crc16", "read_file",
+           "read_header", "write_file"]
 
 MAGIC = b"SVMI"
 FORMAT_VERSION = 1
@@ -121,6 +123,104 @@ class ImageError(ValueError):
     def __init__(self, code: ErrorCode, message: str) -> None:
         super().__init__(message)
         self.code = code
+
+
+# The runtime's one way to read a file (docs/security.md, "The input layer"): every loader of the
+# Python runtime (Image.load, SCT's never-stale check, the app's event scripts, a saved learned
+# policy) reads through read_file. The runtime ships onto robots without the compiler, so it
+# cannot use the compiler's layer (swarmvm.boundary.errors.open_input), which this mirrors: open
+# without waiting, regular files only, a bounded read.
+MAX_SOURCE_FILE_SIZE = 1 << 20      # the compiler's input limit (swarmvm.boundary.errors.MAX_BYTES)
+
+
+class FileKindError(OSError):
+    """A path the runtime was given to read that is not a regular file (a FIFO, a device, a
+    folder, a socket): refused without reading it or waiting on it. ``str()`` is one line."""
+
+    def __init__(self, path: str, kind: str) -> None:
+        super().__init__("%s: is %s, not a regular file" % (_printable(path), kind))
+        self.filename, self.kind = path, kind
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+def _printable(text: str) -> str:
+    """``text`` with each unprintable character (a newline in a file name) as its escape, so that
+    a message naming it stays one line (the compiler's swarmvm.boundary.escape.terminal)."""
+    return text if text.isprintable() else "".join(c if c.isprintable() else ascii(c)[1:-1] for c in text)
+
+
+def _file_kind(mode: int) -> str:
+    for test, phrase in ((stat.S_ISDIR, "a folder"), (stat.S_ISCHR, "a character device"),
+                         (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return phrase
+    return "an unknown kind of file"
+
+
+def read_file(path: Union[str, "os.PathLike[str]"], limit: int) -> bytes:
+    """At most ``limit`` + 1 bytes of the regular file ``path``, so that the caller refuses a
+    longer file in its own words (an image: ErrorCode.LENGTH) without reading it all. Opened
+    without waiting (O_NONBLOCK: a FIFO with no writer would block a plain open for ever) and
+    refused unless a regular file (:class:`FileKindError`: a FIFO, ``/dev/zero``, a folder);
+    an OSError as ``open`` gives when it cannot be opened or read."""
+    name = os.fspath(path)
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0)
+    fd = os.open(name, flags)
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            raise FileKindError(name, _file_kind(mode))
+        chunks: List[bytes] = []
+        left = limit + 1
+        while left > 0:
+            chunk = os.read(fd, left)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
+def write_file(path: Union[str, "os.PathLike[str]"], data: bytes) -> None:
+    """``data`` as the file ``path``, whole or not at all: the runtime's one writer (a saved
+    learned policy), the small mirror of the compiler's output layer (swarmvm.boundary.output),
+    which a robot does not carry. Written to a temporary file beside it, fsynced, then renamed
+    over it; on a failure the temporary file is removed and the old file stays. A new file's
+    permissions are what the umask leaves of rw-rw-rw-, a replaced one keeps its own; a path
+    that exists and is not a regular file (a FIFO, a device, a folder) is refused."""
+    import tempfile
+    name = os.fspath(path)
+    try:
+        info: Optional[os.stat_result] = os.stat(name)
+    except FileNotFoundError:
+        info = None
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        raise FileKindError(name, _file_kind(info.st_mode))
+    if info is not None:
+        mode = stat.S_IMODE(info.st_mode)
+    else:
+        umask = os.umask(0o022)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    fd, temporary = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(name)), prefix=".swarmvm-")
+    try:
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+        os.fsync(fd)
+        os.fchmod(fd, mode)
+        os.close(fd)
+        fd = -1
+        os.replace(temporary, name)
+    except BaseException:
+        if fd >= 0:
+            os.close(fd)
+        os.unlink(temporary)
+        raise
 
 
 # Each byte value with its bits in reverse order.
@@ -275,10 +375,10 @@ class Image:
 
     @classmethod
     def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Image":
-        """Read a ``.svm`` file: at most MAX_IMAGE_SIZE + 1 bytes, so that a huge or endless
-        file (``/dev/zero``) is refused without reading it all."""
-        with open(path, "rb") as handle:
-            return cls.parse(handle.read(MAX_IMAGE_SIZE + 1))
+        """Read a ``.svm`` file (:func:`read_file`): a regular file only (a FIFO, a device such
+        as ``/dev/zero``, a folder: :class:`FileKindError`), at most MAX_IMAGE_SIZE + 1 bytes of
+        it, so that a huge file is refused (LENGTH) without reading it all."""
+        return cls.parse(read_file(path, MAX_IMAGE_SIZE))
 
     @classmethod
     def parse(cls, raw: bytes) -> "Image":

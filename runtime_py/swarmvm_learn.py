@@ -23,9 +23,9 @@ import os
 from typing import TYPE_CHECKING, Iterable, List, Mapping, Optional, Protocol, Sequence, Set, Tuple, TypedDict, Union
 
 if TYPE_CHECKING:   # mypy reads the format as the package's module; a robot imports the copy beside it
-    from runtime_py.swarmvm_format import Image, crc16
+    from runtime_py.swarmvm_format import MAX_SOURCE_FILE_SIZE, Image, crc16, read_file, write_file
 else:
-    from swarmvm_format import crc16
+    from swarmvm_format import MAX_SOURCE_FILE_SIZE, crc16, read_file, write_file
 
 __all__ = ["LinearClassifier", "LearnedPolicy", "PolicyError", "q16"]
 
@@ -398,12 +398,14 @@ class LearnedPolicy:
         self.pending = None
 
     def save(self, path: StrPath) -> None:
-        with open(path, "w") as handle:
-            json.dump(dict(format="swarmvm-learned-policy", words=self.to_words()), handle)
+        # the runtime's writer: the whole file or the old one, never half a policy
+        write_file(path, json.dumps(dict(format="swarmvm-learned-policy", words=self.to_words())).encode("ascii"))
 
     def load(self, path: StrPath) -> None:
-        with open(path) as handle:
-            data = json.load(handle)
+        raw = read_file(path, MAX_SOURCE_FILE_SIZE)     # the runtime's input layer: regular files, bounded
+        if len(raw) > MAX_SOURCE_FILE_SIZE:
+            raise PolicyError("%s is over %d bytes: not a saved learned policy" % (path, MAX_SOURCE_FILE_SIZE))
+        data = json.loads(raw.decode("utf-8"))
         if data.get("format") != "swarmvm-learned-policy":
             raise PolicyError("%s is not a saved learned policy" % path)
         self.from_words(data["words"])

@@ -15,7 +15,7 @@ once; docs/api.md says what else the step and the load do ahead of time, and wha
 from __future__ import annotations
 
 __all__ = ["CallbackError", "FORMAT_VERSION", "Image", "ImageError", "UnboundEvents", "VM", "XorShift32", "callback_stem", "crc16",
-           "SCT", "SCTPub", "format_trace_line", "replay", "replay_lines"]
+           "SCT", "SCTPub", "format_trace_line", "read_file", "replay", "replay_lines"]
 
 import functools
 import hashlib
@@ -26,10 +26,12 @@ import types
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Optional, Protocol, Sequence, Tuple, Union, cast
 
 if TYPE_CHECKING:   # mypy reads the format and the step writer as the package's modules; the VM imports the copies beside it
-    from runtime_py.swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+    from runtime_py.swarmvm_format import (FORMAT_VERSION, MAX_SOURCE_FILE_SIZE, Q15_ONE, ErrorCode, Image, ImageError,
+                                           crc16, read_file)
     from runtime_py.swarmvm_step_source import canonical_step, exact_step
 else:
-    from swarmvm_format import FORMAT_VERSION, Q15_ONE, ErrorCode, Image, ImageError, crc16
+    from swarmvm_format import (FORMAT_VERSION, MAX_SOURCE_FILE_SIZE, Q15_ONE, ErrorCode, Image, ImageError, crc16,
+                                read_file)
     from swarmvm_step_source import canonical_step, exact_step
 
 INPUT_MODES = ("level", "edge")
@@ -744,7 +746,8 @@ def _image_beside(yaml_path: str) -> Image:
         raise FileNotFoundError("cannot read table image %s for %s%s" % (image_path, yaml_path, fix))
     image = Image.load(image_path)
     if image.source is not None and os.path.exists(yaml_path):
-        with open(yaml_path, "rb") as handle:
-            if hashlib.sha256(handle.read()).digest() != image.source.digest:
-                raise ValueError("%s is stale: it was packed from another version of %s%s" % (image_path, yaml_path, fix))
+        # (read_file: a FIFO or a device under the YAML's name is refused, never waited on; a
+        # file over the compiler's input limit cannot be the one packed, and its digest differs)
+        if hashlib.sha256(read_file(yaml_path, MAX_SOURCE_FILE_SIZE)).digest() != image.source.digest:
+            raise ValueError("%s is stale: it was packed from another version of %s%s" % (image_path, yaml_path, fix))
     return image

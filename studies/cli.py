@@ -13,6 +13,7 @@ import json
 import click
 
 from ..boundary import terminal
+from ..boundary.errors import InputError
 from ..cli.options import SEED, SEED_MAX, FiniteFloat
 from . import energy_commands, sweeps
 from .drone_delivery.params import RULES, Params
@@ -137,7 +138,7 @@ def sweep_uav(out, rules, thresholds, taus, runs, first_seed, workers, scheduler
         terminal.fail(exc)
     try:
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
-    except sweeps.SchedulerError as exc:
+    except (sweeps.SchedulerError, InputError) as exc:     # InputError: a trial's table cannot be written there
         terminal.fail(exc)
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
@@ -153,9 +154,12 @@ def plot_uav(results, out, tau):
     from .drone_delivery import plots
     try:
         sweeps.check_trials(results, "tau_min", "swarmvm sweep uav")
-    except ValueError as exc:
+    except (ValueError, InputError) as exc:
         terminal.fail(exc)
-    paths, missing = plots.draw_all(results, out, tau=tau)
+    try:
+        paths, missing = plots.draw_all(results, out, tau=tau)
+    except InputError as exc:           # a table that cannot be read, a figure that cannot be written
+        terminal.fail(exc)
     for path in paths:
         terminal.line(path)
     for text in missing:

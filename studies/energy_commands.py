@@ -135,7 +135,7 @@ def sweep_energy(out, figures, runs, first_seed, workers, scheduler, no_progress
         ran = grid_sweep.sweep(specs, out, workers=workers, scheduler=scheduler, progress=not no_progress)
     except (plugin.BuildError, trial.TrialError) as exc:
         fail(str(exc), 1)
-    except sweeps.SchedulerError as exc:
+    except (sweeps.SchedulerError, InputError) as exc:     # InputError: a trial's table cannot be written there
         fail(str(exc))
     terminal.line("%d trials run, %d already done; results in %s" % (ran, len(specs) - ran, out))
 
@@ -152,9 +152,12 @@ def plot_energy(results, out, **values):
     base = params_from(values)
     try:
         sweeps.check_trials(results, "strategy", "swarmvm sweep energy")
-    except ValueError as exc:
+    except (ValueError, InputError) as exc:
         fail(str(exc))
-    paths, missing = plots.draw_all(results, out, base)
+    try:
+        paths, missing = plots.draw_all(results, out, base)
+    except InputError as exc:           # a table that cannot be read, a figure that cannot be written
+        fail(str(exc))
     for path in paths:
         terminal.line(path)
     for title in missing:

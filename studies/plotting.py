@@ -10,10 +10,15 @@ drawn on small data."""
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from typing import Dict, List
 
+from ..boundary.errors import read_input
+from ..boundary.output import write_outputs
+
 CAPTION_KEY = "Description"
+FIGURE_MAX_BYTES = 64 << 20     # a study's PNG (the largest drawn is under 1 MB), read back by read_encodings
 TEXTS_KEY = "Texts"
 
 
@@ -42,18 +47,23 @@ def figure_texts(figure) -> List[str]:
 
 def save(figure, path: Path, caption: str, tight: bool = True) -> Path:
     """Writes the figure as a PNG carrying ``caption`` and the figure's texts (see above);
-    ``tight``: lay it out first (a constrained layout lays itself out)."""
+    ``tight``: lay it out first (a constrained layout lays itself out). Drawn in memory, then
+    written through the output layer (swarmvm.boundary.output): the mode from the umask, no
+    partial PNG on a failure, never over a link or an input (an InputError naming the file)."""
     if tight:
         figure.tight_layout()
     metadata = {"Software": None, CAPTION_KEY: caption, TEXTS_KEY: "\n".join(figure_texts(figure))}
-    figure.savefig(str(path), dpi=110, metadata=metadata)
+    png = io.BytesIO()
+    figure.savefig(png, format="png", dpi=110, metadata=metadata)
     from matplotlib import pyplot
     pyplot.close(figure)   # pyplot keeps every figure it made until closed
+    path = Path(path)
+    write_outputs(path.parent, {path.name: (png.getvalue(), False)})
     return path
 
 
 def read_encodings(path: Path) -> Dict[str, str]:
     """The caption and texts a PNG of :func:`save` carries (``Description``, ``Texts``)."""
     from PIL import Image
-    with Image.open(path) as image:
+    with Image.open(io.BytesIO(read_input(str(path), limit=FIGURE_MAX_BYTES))) as image:
         return {key: image.text.get(key, "") for key in (CAPTION_KEY, TEXTS_KEY)}

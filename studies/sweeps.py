@@ -13,12 +13,15 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
+import io
 import json
 import multiprocessing
-import os
 import shlex
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+
+from ..boundary.errors import TABLE_MAX_BYTES, read_input
+from ..boundary.output import write_outputs
 
 if TYPE_CHECKING:
     import pandas
@@ -32,14 +35,28 @@ def digest(values: dict) -> str:
 
 
 def write_trial(out: Path, key: str, tables: Tables, names: Sequence[str]) -> None:
-    """One Parquet file per table, in ``names``' order (``trials`` last), each renamed into place."""
+    """One Parquet file per table, drawn in memory and written through the output layer
+    (swarmvm.boundary.output): the other tables as one transaction, then ``trials`` (which
+    marks the trial done, :func:`done_keys`) as another, so that a trial interrupted between
+    them is run again. The folders are made first (several workers may make them at once)."""
     import pandas as pd
+    files: Dict[str, Tuple[bytes, bool]] = {}
     for table in names:
-        folder = out / table
-        folder.mkdir(parents=True, exist_ok=True)
-        temp = folder / (".%s.tmp" % key)
-        pd.DataFrame(tables[table]).to_parquet(temp, index=False)
-        os.replace(temp, folder / ("%s.parquet" % key))
+        (out / table).mkdir(parents=True, exist_ok=True)
+        data = io.BytesIO()
+        pd.DataFrame(tables[table]).to_parquet(data, index=False)
+        files["%s/%s.parquet" % (table, key)] = (data.getvalue(), False)
+    last = "trials/%s.parquet" % key
+    write_outputs(out, {rel: value for rel, value in files.items() if rel != last})
+    if last in files:
+        write_outputs(out, {last: files[last]})
+
+
+def read_table(path: Path) -> "pandas.DataFrame":
+    """One trial's Parquet table, read through the input layer (a regular file, TABLE_MAX_BYTES
+    at most: swarmvm.boundary.errors.read_input)."""
+    import pandas as pd
+    return pd.read_parquet(io.BytesIO(read_input(str(path), limit=TABLE_MAX_BYTES)))
 
 
 def done_keys(out: Path) -> set:
@@ -120,11 +137,10 @@ def check_trials(out, column: str, sweep: str) -> None:
     """A ValueError unless ``out`` holds finished trials of the study whose trials table has
     ``column`` (``sweep``: the command that writes them), so that a plot of an empty folder, or
     of the other study's, is one line rather than a traceback or an empty figure."""
-    import pandas as pd
     files = sorted((Path(out) / "trials").glob("*.parquet"))
     if not files:
         raise ValueError("%s: no finished trials in this folder (%s -o %s writes them)" % (out, sweep, shlex.quote(str(out))))
-    if column not in pd.read_parquet(files[0]).columns:
+    if column not in read_table(files[0]).columns:
         raise ValueError("%s: these are not the trials of %s" % (out, sweep))
 
 
@@ -135,7 +151,7 @@ def load(out, names: Sequence[str], index: Sequence[str] = ("key",)) -> Dict[str
     frames = {}
     for table in names:
         files = sorted((out / table).glob("*.parquet"))
-        frame = pd.concat([pd.read_parquet(f) for f in files], ignore_index=True) if files else pd.DataFrame()
+        frame = pd.concat([read_table(f) for f in files], ignore_index=True) if files else pd.DataFrame()
         columns = [c for c in index if c in frame.columns]
         frames[table] = frame.sort_values(columns).reset_index(drop=True) if columns else frame
     return frames

@@ -11,6 +11,14 @@ from typing import BinaryIO, Iterator, Optional
 from .escape import bounded, terminal
 
 MAX_BYTES = 1 << 20   # no real supervisor comes near it (the corpus's largest is 11 kB)
+# A linked firmware image the footprint readers measure (an ELF with its debugging sections): the
+# CapBot's is 215 kB, an ARGoS controller library a few MB; a larger file is not a robot's image.
+ELF_MAX_BYTES = 64 << 20
+# A compiler's stack-usage file (.su), one line per function: the runtime's largest is 3 kB.
+SU_MAX_BYTES = MAX_BYTES
+# One trial's table of a study's sweep (Parquet): the largest trial the studies accept (10,000,000
+# accuracy cells, docs/limits.md) writes well under it.
+TABLE_MAX_BYTES = 1 << 30
 
 
 class InputError(Exception):
@@ -100,18 +108,19 @@ def open_input(path: str, limit: Optional[int] = None, record: bool = True) -> B
     return handle
 
 
-def read_input(path: str, edit: bool = False) -> bytes:
-    """The bytes of an input file (:func:`open_input`), at most MAX_BYTES of them: at most
-    MAX_BYTES + 1 bytes are read, so a file that grows while it is read is refused too.
+def read_input(path: str, edit: bool = False, limit: int = MAX_BYTES) -> bytes:
+    """The bytes of an input file (:func:`open_input`), at most ``limit`` of them (MAX_BYTES,
+    or a kind's own bound: ELF_MAX_BYTES for a linked image, docs/limits.md): at most
+    ``limit`` + 1 bytes are read, so a file that grows while it is read is refused too.
     ``edit``: the verb reads the file to replace it (``compat-switch`` edits a project's build
     files in place), so it is not recorded as an input the output layer must keep."""
-    with open_input(path, MAX_BYTES, record=not edit) as handle:
+    with open_input(path, limit, record=not edit) as handle:
         try:
-            data = handle.read(MAX_BYTES + 1)
+            data = handle.read(limit + 1)
         except OSError as exc:
             raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
-    if len(data) > MAX_BYTES:
-        raise InputError(path, "", "file is over the %d-byte limit" % MAX_BYTES)
+    if len(data) > limit:
+        raise InputError(path, "", "file is over the %d-byte limit" % limit)
     return data
 
 

@@ -11,6 +11,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..boundary.errors import read_input
+
 
 def _callback_pattern(rel: str, model: str) -> re.Pattern[str]:
     """Callback names in a user file, by its language (compiler/naming.py's spellings)."""
@@ -44,7 +46,8 @@ def drift(path: Path, fresh: bytes, model: str, generated: Iterable[bytes] = ())
     pattern = _callback_pattern(path.name, model)
     wanted = set(pattern.findall(fresh.decode("utf-8")))
     defined = wanted.union(*(pattern.findall(data.decode("utf-8", errors="replace")) for data in generated))
-    present = set(pattern.findall(path.read_text(encoding="utf-8", errors="replace")))
+    # the user's file, through the input layer: a FIFO or a device in its place is refused, not waited on
+    present = set(pattern.findall(read_input(str(path)).decode("utf-8", errors="replace")))
     missing, stale = wanted - present, present - defined
     if not missing and not stale:
         return None

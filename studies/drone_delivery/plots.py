@@ -9,6 +9,8 @@ from typing import List, Tuple
 
 import numpy as np
 
+from ...boundary.escape import markdown
+from ...boundary.output import write_outputs
 from ..plotting import pyplot as _pyplot
 from ..plotting import save as _save
 from .metrics import winner_soh_map
@@ -197,7 +199,8 @@ def summary_markdown(frames) -> str:
     lines = ["| rule | tau (min) | runs | delivered | pending | aborted (% of take-offs) | median delivery (min) | final accuracy (%) |",
              "|---|---|---|---|---|---|---|---|"]
     for row in table.sort_values(["rule", "threshold", "tau_min"]).itertuples():
-        rule = row.rule if row.rule != "threshold" else "threshold %d %%" % round(100 * row.threshold)
+        # (markdown: a rule's name comes from the trials' tables, files a user may have edited)
+        rule = markdown(row.rule) if row.rule != "threshold" else "threshold %d %%" % round(100 * row.threshold)
         lines.append("| %s | %g | %d | %.0f | %.0f | %.0f (%.1f %%) | %.1f | %.1f |" % (
             rule, row.tau_min, row.runs, row.delivered, row.pending, row.aborted, row.aborted_pct,
             row.median_delivery_min, 100 * row.final_accuracy))
@@ -245,6 +248,6 @@ def draw_all(results, out, tau: float = 20.0) -> Tuple[List[Path], List[str]]:
         written.append(figure20(plt, frames, out / "uav_fig20_forecast.png", tau))
     plt.close("all")
     summary = out / "uav_summary.md"
-    summary.write_text(summary_markdown(frames))
+    write_outputs(out, {summary.name: (summary_markdown(frames).encode("utf-8"), False)})
     written.append(summary)
     return written, missing

@@ -16,6 +16,7 @@ from typing import List, Optional, Tuple
 
 import numpy as np
 
+from ...boundary.output import write_outputs
 from ..plotting import pyplot, save
 from .params import Params
 from .sweep import load
@@ -187,6 +188,7 @@ def draw_all(results, out, base: Params = DEFAULT) -> Tuple[List[Path], List[str
         else:
             paths.append(path)
     summary = out / "energy_summary.csv"
-    summarise(trials).to_csv(summary, index=False, float_format="%.4f")
+    text = summarise(trials).to_csv(index=False, float_format="%.4f")
+    write_outputs(out, {summary.name: (text.encode("utf-8"), False)})
     paths.append(summary)
     return paths, missing

@@ -26,6 +26,8 @@ static int check(const std::string& arg) {
         return 0;
     } catch (const swarmvm::ImageError& ex) {
         return static_cast<int>(ex.code());
+    } catch (const swarmvm::FileError&) {
+        return -1;      // --load of a path the input layer refuses (a device, a FIFO, a folder)
     }
 }
 

@@ -14,9 +14,10 @@ from imports import ROOT, cycles, import_graph, imported_names, module_files
 
 # What the studies may import from the compiler: the typed API and the mechanisms every caller
 # of it uses (its errors, the terminal's one-line output, the click option types, the one way
-# files are written), and the subpackages that hold them (whose __init__ holds a docstring only).
+# files are written, the escaping of user text for the context it is written in: the studies'
+# Markdown tables), and the subpackages that hold them (whose __init__ holds a docstring only).
 PUBLIC = {"swarmvm", "swarmvm.api", "swarmvm.boundary", "swarmvm.boundary.errors", "swarmvm.boundary.terminal",
-          "swarmvm.boundary.output", "swarmvm.cli", "swarmvm.cli.options"}
+          "swarmvm.boundary.output", "swarmvm.boundary.escape", "swarmvm.cli", "swarmvm.cli.options"}
 
 # The folders the package is installed from (pyproject.toml's package-dir).
 SOURCE_FOLDERS = ("generator", "templates", "runtime_c", "runtime_cpp", "runtime_py", "studies")
