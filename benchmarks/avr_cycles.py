@@ -15,8 +15,10 @@ application's are.
 
 Each supervisor runs one random script of STEPS steps (density 0.25) under every option
 combination (inputs x control x policy); the table gives the mean and the worst step over all
-of them, the mean for the default options and for the published Kilobot VM's behaviour (edge,
-if-quiet). Every trace of both VMs is compared with the Python reference, so a figure is never
+of them, the mean for the default options and for edge inputs with if-quiet control (once
+taken for the published Kilobot VM's behaviour: that VM is edge inputs with a choice after the
+inputs on every step, in its file's event order, which the C API's exact mode reproduces,
+runtime_c/README.md; its RAM on the published program is 862 B). Every trace of both VMs is compared with the Python reference, so a figure is never
 that of a wrong run. Same scripts as benchmarks/m4_cycles.py.
 
 The core's flash and RAM come from benchmarks/avr_core.c (the image loaded from flash and
@@ -47,6 +49,7 @@ from conformance.cases import OPTIONS, SUPERVISORS
 from swarmvm.footprint import measure as footprint
 from figures import add_json_option, write_figures
 
+# The "edge+if-quiet" column's options (not the published Kilobot VM's: see the docstring).
 KILOBOT_VM = ("edge", "if-quiet", "uniform")
 FLASH_ONLY = ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"]    # as the Kilobot Makefile
 # The generated Kilobot Makefile's features (templates/kilobot/Makefile.j2), with the policies the

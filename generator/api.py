@@ -42,7 +42,7 @@ from .footprint import report as fp_report
 from .footprint.budget import Budgets, read_budgets
 from .footprint.cycles import measure_cycles
 from .footprint.delta import read_baseline
-from .footprint.stack import STEP_ROOT, measure_stack, parse_indirect
+from .footprint.stack import STEP_ROOT, measure_stack, parse_frames, parse_indirect
 from .inspector.page import Inspection, write_page
 from .models import properties
 from .models.equivalence import compare, format_difference
@@ -54,6 +54,7 @@ from .readers import event_script as script
 from .readers.event_script import read_script_rows
 from .readers.synth_script import read_synth_script
 from .targets import TARGETS, generate
+from .targets import c as c_target
 from .compat.switch import VARIANTS, Switch, switch_project
 
 __all__ = ["InputError", "Compiled", "CheckRow", "load", "compile_model", "check", "read_image",
@@ -179,14 +180,18 @@ class Generated:
     drifts: list[Drift]
 
 
-@checked(inputs=file_names, target=_TARGET, outdir=file_name, name=_NAME, learned=texts)
+@checked(inputs=file_names, target=_TARGET, outdir=file_name, name=_NAME, learned=texts, sct_header=_NAME)
 def generate_target(inputs: Sequence[str], target: str, outdir: str, name: str | None = None,
-                    learned: Sequence[str] = ()) -> Generated:
+                    learned: Sequence[str] = (), sct_header: str | None = None) -> Generated:
     """Generate a target's sources into ``outdir`` (all files or none). Files ``gen`` owns are
     rewritten; user files that exist are kept, and compared with a fresh skeleton: where they
-    drifted, the skeleton is written beside them as ``<file>.new``."""
+    drifted, the skeleton is written beside them as ``<file>.new``. ``sct_header``: also a
+    header of that name for a published program's include (a C target; swarmvm.targets.c.sct_header)."""
     compiled = compile_model(inputs, name=name)
     files = generate(compiled, target, learned_checks=learned_pairs(compiled, target, learned))
+    if sct_header is not None:
+        header, data = c_target.sct_header(compiled, TARGETS[target], sct_header, files)
+        files[header] = (data, False)
     drifts = []
     generated = [data for data, keep in files.values() if not keep]
     for rel, (data, keep) in sorted(files.items()):
@@ -236,19 +241,30 @@ def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: st
     return _vm.replay_lines(machine, rows)
 
 
-@checked(elfs=file_names, indirect=texts, cycles=optional(file_name))
-def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles: str | None = None) -> list[fp.Footprint]:
+@checked(elfs=file_names, indirect=texts, cycles=optional(file_name), frames=texts)
+def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles: str | None = None,
+                      frames: Sequence[str] = ()) -> list[fp.Footprint]:
     """Flash, static RAM and worst-case stack of linked VM images (docs/footprint.md); ``indirect``:
     ``CALLER=TARGET,...`` declarations of what an indirect call in CALLER may reach; ``cycles``:
     an event script each image runs in the emulator for its cycles per step (its checks answered
-    through the dispatch declared for ``svm_step``)."""
+    through the dispatch declared for ``svm_step``). The declarations of the image's target record
+    (``elf.indirect``: what the generated program's own indirect calls reach) come first, so a
+    generated project needs none of its own; ``indirect`` adds to them. ``frames``: ``FUNCTION=BYTES``
+    declarations of the frames of functions with no .su entry whose code does not make theirs certain."""
     from elftools.common.exceptions import ELFError
-    calls = parse_indirect(indirect)
+    given = parse_indirect(indirect)
+    declared_frames = parse_frames(frames)
     rows = []
     for path in elfs:
         try:
             footprint = fp.measure(path)
-            footprint.stack = measure_stack(path, footprint.target, calls)
+            record = TARGETS[footprint.target].elf
+            calls = parse_indirect(record.indirect if record is not None else ())
+            for caller, targets in given.items():
+                calls[caller] = tuple(dict.fromkeys(calls.get(caller, ()) + targets))
+            footprint.indirect = calls
+            footprint.frames = declared_frames
+            footprint.stack = measure_stack(path, footprint.target, calls, frames=declared_frames)
             if cycles is not None:
                 footprint.cycles = measure_cycles(path, footprint.target, fp.table_image(path), cycles,
                                                   calls.get(STEP_ROOT, ()))
@@ -257,15 +273,18 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles:
             raise fp.FootprintError("%s: not an ELF image (%s)" % (path, exc))
         except OSError as exc:
             raise fp.FootprintError("%s: cannot read file (%s)" % (path, exc.strerror))
+        except InputError as exc:     # the input layer's refusal: missing, a FIFO, a device, too large
+            raise fp.FootprintError(str(exc)) from None
     return rows
 
 
 @checked(elfs=file_names, budget=optional(file_name), baseline=optional(file_name),
          fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.measure.Limits"),
-         indirect=texts, cycles=optional(file_name))
+         indirect=texts, cycles=optional(file_name), frames=texts)
 def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: str | None = None,
                      fail_on_growth: float | None = None, limits: fp.Limits = fp.Limits(),
-                     indirect: Sequence[str] = (), cycles: str | None = None) -> fp_report.FootprintReport:
+                     indirect: Sequence[str] = (), cycles: str | None = None,
+                     frames: Sequence[str] = ()) -> fp_report.FootprintReport:
     """The footprint of linked images checked against ``limits`` and the budgets of the TOML file
     ``budget`` (``[tool.swarmvm.footprint]`` of a ``pyproject.toml``), compared with the JSON report
     ``baseline``, each column's growth judged against ``fail_on_growth`` per cent, indirect calls
@@ -279,7 +298,8 @@ def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: s
     budgets = read_budgets(budget) if budget is not None else Budgets()
     old = read_baseline(baseline) if baseline is not None else None
     parse_indirect(indirect)
-    return fp_report.build(measure_footprint(elfs, indirect, cycles), limits, budgets, old, fail_on_growth)
+    parse_frames(frames)
+    return fp_report.build(measure_footprint(elfs, indirect, cycles, frames), limits, budgets, old, fail_on_growth)
 
 
 @checked(paths=file_names, max_states=_MAX_STATES, all_findings=flag)

@@ -30,14 +30,13 @@ footprint: setup $(FOOTPRINT_REPORT).md $(if $(filter 1,$(STREAM)),,$(FOOTPRINT_
 	$(if $(filter 1,$(STREAM)),,@$(FOOTPRINT_COMPARE))
 
 # The Kilobot images are read where their generated Makefile built them, beside the .su files
-# its -fstack-usage writes (the worst-case stack); FOOTPRINT_INDIRECT declares what the indirect
-# calls of the Kilobot runtime and kilolib reach (docs/footprint.md, "Stack").
+# its -fstack-usage writes (the worst-case stack). What the indirect calls of the Kilobot runtime
+# and kilolib reach is the Kilobot target's record's (swarmvm.targets.kilobot); FOOTPRINT_INDIRECT
+# declares the CapBot's (docs/footprint.md, "Stack").
 FOOTPRINT_READ := $(foreach e,$(FOOTPRINT_ELFS),$(if $(filter $(KILOBOT_OUT)/%,$e),$(KILOBOT_OUT)/gen/$(basename $(notdir $e))/$(notdir $e),$e))
-FOOTPRINT_INDIRECT := --indirect svm_step=svm_kilobot_app_dispatch,dispatch --indirect kilo_start=setup,loop \
-  --indirect __vector_14=message_tx,message_tx_success,message_tx_dummy,message_tx_success_dummy \
-  --indirect __vector_23=on_message,message_rx_dummy $(CAPBOT_INDIRECT)
+FOOTPRINT_INDIRECT := $(CAPBOT_INDIRECT)
 
-$(FOOTPRINT_REPORT).md: $(FOOTPRINT_ELFS) $(wildcard generator/footprint*.py)
+$(FOOTPRINT_REPORT).md: $(FOOTPRINT_ELFS) $(wildcard generator/footprint/*.py)
 	@$(SWARMVM) footprint $(FOOTPRINT_READ) $(FOOTPRINT_INDIRECT) --runtime-sizes --json $(FOOTPRINT_REPORT).json > $@ || { cat $@; rm -f $@; exit 1; }
 
 FOOTPRINT_EXAMPLE := $(SWARMVM) footprint $(KILOBOT_OUT)/gen/energy_worker/energy_worker.elf $(FOOTPRINT_INDIRECT) \

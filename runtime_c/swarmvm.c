@@ -27,8 +27,13 @@
 #define SVM_COLD
 #endif
 
-/* A swap moves what is bound by event name (runtime bindings, svm_bind_priority's list). */
+/* A swap moves what is bound by event name (runtime bindings, svm_bind_priority's list). A
+ * trusted build (SVM_TRUSTED_IMAGE) has one image, so a swap never changes an event's index. */
+#ifdef SVM_TRUSTED_IMAGE
+#define REBIND_BY_NAME 0
+#else
 #define REBIND_BY_NAME (SVM_WITH_NAMES && (SVM_WITH_BINDINGS || SVM_WITH_FIRST))
+#endif
 
 /* ---- image access ------------------------------------------------------------------------
  * An image is read where it lives: `source` is SVM_SOURCE_RAM, _FLASH or _EEPROM. On AVR the
@@ -91,6 +96,29 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define SUP_AT(vm, s) (SUPS_AT((vm)->mask_bytes) + (uint16_t)(s) * SUP_SIZE((vm)->mask_bytes))
 /* vm->state[s] is the supervisor's *global* state number: its record is at
  * states_at + state * STATE_SIZE(m), found without reading the supervisor's first state. */
+
+/* The step's view of the loaded image's counts and section offsets. A trusted build runs an
+ * image of exactly its limits (its load refuses any other), so there they are constants the
+ * compiler folds into the step: fewer loads, no multiplication at run time, less flash. */
+#ifdef SVM_TRUSTED_IMAGE
+#define VM_EVENTS(vm) ((void)(vm), (uint8_t)SVM_MAX_EVENTS)
+#define VM_SUPERVISORS(vm) ((void)(vm), (uint8_t)SVM_MAX_SUPERVISORS)
+#define TRUSTED_STATES_AT ((uint16_t)(SUPS_AT(SVM_MASK_BYTES) + SVM_MAX_SUPERVISORS * SUP_SIZE(SVM_MASK_BYTES)))
+#define TRUSTED_TARGETS_AT ((uint16_t)(TRUSTED_STATES_AT + (uint32_t)SVM_MAX_STATES * STATE_SIZE(SVM_MASK_BYTES)))
+#define VM_STATES_AT(vm) ((void)(vm), TRUSTED_STATES_AT)
+#define VM_TARGETS_AT(vm) ((void)(vm), TRUSTED_TARGETS_AT)
+#if SVM_MAX_STATES <= 256
+#define VM_NARROW(vm) ((void)(vm), 1u)     /* no supervisor has more than 256 states */
+#else
+#define VM_NARROW(vm) ((vm)->width == 1u)
+#endif
+#else
+#define VM_EVENTS(vm) ((vm)->num_events)
+#define VM_SUPERVISORS(vm) ((vm)->num_supervisors)
+#define VM_STATES_AT(vm) ((vm)->states_at)
+#define VM_TARGETS_AT(vm) ((vm)->targets_at)
+#define VM_NARROW(vm) ((vm)->width == 1u)
+#endif
 
 /* A loaded image's mask width, clamped to 1..SVM_MASK_BYTES for the compiler's sake (load has
  * checked it already), so that loops over it provably stay inside the VM's mask arrays. */
@@ -435,6 +463,9 @@ uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
     return (uint16_t)crc_byte(crc, byte);
 }
 
+/* The image checks, from here to svm_validate, are left out of a trusted build: its one image
+ * was checked by the compiler that wrote it (swarmvm.h, "Minimal profile"). */
+#ifndef SVM_TRUSTED_IMAGE
 static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
     /* Native ints (16 bits on AVR) and a pointer walk: no truncation or index sum per byte. */
@@ -457,12 +488,15 @@ static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t le
     return (uint16_t)crc;
 }
 
+#endif /* !SVM_TRUSTED_IMAGE */
+
 /* What svm_load needs to know once an image has been accepted: section offsets and header. */
 typedef struct layout {
     uint16_t states_at, targets_at, probs_at, names_at;
     uint8_t header[SVM_HEADER_SIZE];
 } layout_t;
 
+#ifndef SVM_TRUSTED_IMAGE
 /* `count` bytes of an image from `at` into `out` (RAM): the checks below read a record once
  * into locals instead of calling the reader per field. */
 static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source, uint16_t at, uint8_t count)
@@ -471,6 +505,7 @@ static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source,
         *out++ = rd_raw(image, source, at);
     }
 }
+#endif
 
 /* The little-endian u16 at `p` in RAM. */
 static SVM_INLINE uint16_t le16(const uint8_t *p)
@@ -478,6 +513,7 @@ static SVM_INLINE uint16_t le16(const uint8_t *p)
     return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
 }
 
+#ifndef SVM_TRUSTED_IMAGE
 /* Whether byte `last` of an event mask (its last byte) has a bit at or above event `e` (in the
  * padding): an event the image does not have. */
 static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)
@@ -729,6 +765,8 @@ SVM_COLD int svm_validate(const uint8_t *image, uint16_t length, uint8_t source)
     return readable(source) ? validate(image, source, length, &lay) : SVM_ERR_SOURCE;
 }
 
+#endif /* !SVM_TRUSTED_IMAGE */
+
 /* ---- life cycle ---------------------------------------------------------------------------- */
 
 SVM_COLD void svm_init(svm_vm_t *vm)
@@ -758,10 +796,13 @@ SVM_COLD void svm_init(svm_vm_t *vm)
 
 SVM_COLD void svm_reset(svm_vm_t *vm)
 {
-    uint8_t s, m = vm->mask_bytes;
+    /* Every accepted image has masks of SVM_MASK_BYTES in an exact build, and starts each
+     * supervisor in its local state 0 (the load's checks, or the compiler for a trusted image):
+     * its global initial state is its first. */
+    uint8_t s, m = SVM_MASK_EXACT ? (uint8_t)SVM_MASK_BYTES : vm->mask_bytes;
     const uint8_t *record = vm->image + SUPS_AT(m) + m;    /* first state, count, initial */
     for (s = 0; s < vm->num_supervisors; s++, record += SUP_SIZE(m)) {
-        vm->state[s] = (svm_state_t)(peek16(vm->source, record) + peek16(vm->source, record + 4));
+        vm->state[s] = (svm_state_t)peek16(vm->source, record);
     }
     for (s = 0; s < SVM_MASK_BYTES; s++) {
         vm->previous[s] = 0;
@@ -888,6 +929,85 @@ static SVM_COLD int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t 
 #endif /* REBIND_BY_NAME */
 #endif /* SVM_WITH_NAMES */
 
+#ifdef SVM_TRUSTED_IMAGE
+/* Minimal profile: the one image is the generator's constant, which the compiler checked when it
+ * wrote it, so nothing of it is checked again but that its counts are the build's limits (they
+ * size the VM's arrays and are the step's constants) and that it is that image: a pointer to any
+ * other bytes is refused, so the profile cannot run an image that did not come from the
+ * compiler. Its sections follow from the header (docs/image-format.md). */
+SVM_COLD int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length)
+{
+#if defined(__AVR__)
+    const uint8_t source = SVM_SOURCE_FLASH;
+#else
+    const uint8_t source = SVM_SOURCE_RAM;      /* a plain read, as svm_load_P's elsewhere */
+#endif
+    uint8_t e, n, width;
+    uint16_t states;
+    (void)length;
+    if (image != SVM_TRUSTED_IMAGE) {
+        return SVM_ERR_SOURCE;
+    }
+    e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
+    n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS);
+    width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
+    states = rd16_raw(image, source, SVM_AT_NUM_STATES);
+    /* The step takes the counts as the build's constants (VM_EVENTS...): the image must have
+     * exactly these limits, as the generated Makefile gives them. */
+    if (rd_raw(image, source, SVM_AT_MASK_BYTES) != SVM_MASK_BYTES || e != SVM_MAX_EVENTS ||
+        n != SVM_MAX_SUPERVISORS || states != SVM_MAX_STATES) {
+        return SVM_ERR_LIMITS;
+    }
+    vm->image = image;
+    vm->source = source;
+    vm->num_events = e;
+    vm->num_supervisors = n;
+    vm->width = width;
+    vm->mask_bytes = SVM_MASK_BYTES;
+    vm->states_at = TRUSTED_STATES_AT;
+    vm->targets_at = TRUSTED_TARGETS_AT;
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED || SVM_WITH_NAMES
+    {   /* the sections after the targets, read only by the features that use them */
+        uint8_t flags = rd_raw(image, source, SVM_AT_FLAGS);
+        uint16_t trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
+        uint16_t pos = (uint16_t)(TRUSTED_TARGETS_AT + trans * width);
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
+        vm->probs_at = (flags & SVM_FLAG_PROBS) ? pos : 0u;
+#endif
+        if (flags & SVM_FLAG_PROBS) {
+            pos = (uint16_t)(pos + 2u * trans);
+        }
+#if SVM_WITH_NAMES
+        vm->names_at = (flags & SVM_FLAG_NAMES) ? pos : 0u;
+#endif
+        (void)pos;
+    }
+#endif
+    svm_reset(vm);
+    return SVM_OK;
+}
+#else /* !SVM_TRUSTED_IMAGE */
+/* Run an accepted image from its initial states (both loaders' last step; inlined into them,
+ * a call of its own cost flash). */
+static SVM_INLINE void install(svm_vm_t *vm, const uint8_t *image, uint8_t source, const layout_t *lay)
+{
+    vm->image = image;
+    vm->source = source;
+    vm->states_at = lay->states_at;
+    vm->targets_at = lay->targets_at;
+#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
+    vm->probs_at = lay->probs_at;
+#endif
+#if SVM_WITH_NAMES
+    vm->names_at = lay->names_at;
+#endif
+    vm->num_events = lay->header[SVM_AT_NUM_EVENTS];
+    vm->num_supervisors = lay->header[SVM_AT_NUM_SUPERVISORS];
+    vm->width = lay->header[SVM_AT_STATE_WIDTH];
+    vm->mask_bytes = lay->header[SVM_AT_MASK_BYTES];
+    svm_reset(vm);
+}
+
 static SVM_COLD int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, uint8_t source)
 {
     layout_t lay;
@@ -913,21 +1033,7 @@ static SVM_COLD int load(svm_vm_t *vm, const uint8_t *image, uint16_t length, ui
         (void)rebind_priority(vm, image, source, &lay, 1);
     }
 #endif
-    vm->image = image;
-    vm->source = source;
-    vm->states_at = lay.states_at;
-    vm->targets_at = lay.targets_at;
-#if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
-    vm->probs_at = lay.probs_at;
-#endif
-#if SVM_WITH_NAMES
-    vm->names_at = lay.names_at;
-#endif
-    vm->num_events = lay.header[SVM_AT_NUM_EVENTS];
-    vm->num_supervisors = lay.header[SVM_AT_NUM_SUPERVISORS];
-    vm->width = lay.header[SVM_AT_STATE_WIDTH];
-    vm->mask_bytes = lay.header[SVM_AT_MASK_BYTES];
-    svm_reset(vm);
+    install(vm, image, source, &lay);
     return SVM_OK;
 }
 
@@ -949,6 +1055,7 @@ int svm_load_E(svm_vm_t *vm, const uint8_t *image, uint16_t length)
 {
     return readable(SVM_SOURCE_EEPROM) ? load(vm, image, length, SVM_SOURCE_EEPROM) : SVM_ERR_SOURCE;
 }
+#endif /* SVM_TRUSTED_IMAGE */
 
 void svm_set_options(svm_vm_t *vm, uint8_t options, uint32_t seed)
 {
@@ -1084,10 +1191,10 @@ static void violate(svm_vm_t *vm, uint8_t event, uint8_t s)
 static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
     const uint8_t *img = vm->image;
-    const uint8_t *states = img + vm->states_at, *targets = img + vm->targets_at;
+    const uint8_t *states = img + VM_STATES_AT(vm), *targets = img + VM_TARGETS_AT(vm);
     const uint8_t *sup = img + SUPS_AT(m);
     svm_state_t *state = vm->state;
-    uint8_t src = vm->source, n = vm->num_supervisors, narrow = vm->width == 1u, s;
+    uint8_t src = vm->source, n = VM_SUPERVISORS(vm), narrow = VM_NARROW(vm), s;
     for (s = 0; s < n; s++, sup += SUP_SIZE(m)) {
         const uint8_t *st;
         uint8_t defined;
@@ -1111,10 +1218,10 @@ static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit
 /* The enabled controllable events among `candidates` (docs/semantics.md step 5). */
 static SVM_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint8_t m)
 {
-    const uint8_t *img = vm->image, *sup = img + SUPS_AT(m), *states = img + vm->states_at;
+    const uint8_t *img = vm->image, *sup = img + SUPS_AT(m), *states = img + VM_STATES_AT(vm);
     const svm_state_t *state = vm->state;
     uint8_t src = vm->source, s;
-    for (s = vm->num_supervisors; s != 0u; s--, sup += SUP_SIZE(m)) {
+    for (s = VM_SUPERVISORS(vm); s != 0u; s--, sup += SUP_SIZE(m)) {
         const uint8_t *st = states + (uint16_t)*state++ * STATE_SIZE(m);
         candidates = mask_and(candidates, mask_or_not(mask_read(src, st, m), mask_read(src, sup, m)));
     }
@@ -1124,7 +1231,7 @@ static SVM_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint
 /* The events 0 .. E-1 of the loaded image. */
 static SVM_INLINE mask_t valid_events(const svm_vm_t *vm)
 {
-    return vm->num_events == SVM_MAX_EVENTS ? MASK_LOW_MAX : mask_low(vm->num_events);
+    return VM_EVENTS(vm) == SVM_MAX_EVENTS ? MASK_LOW_MAX : mask_low(VM_EVENTS(vm));
 }
 
 static SVM_INLINE mask_t enabled_m(const svm_vm_t *vm, uint8_t m)
@@ -1409,6 +1516,17 @@ uint8_t svm_step(svm_vm_t *vm)
 #endif
     return step_m(vm, SVM_MASK_BYTES);
 }
+
+#if SVM_SCT_EXACT
+/* Nadzoru's exact step (swarmvm_sct.c, declared in swarmvm_sct.h) applies events one at a time
+ * in its file's order; only that build compiles this second caller of fire. */
+void svm_fire_event(svm_vm_t *vm, uint8_t event)
+{
+    if (vm->image != 0 && event < vm->num_events) {
+        fire(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), vm->mask_bytes);
+    }
+}
+#endif
 
 /* ---- inspection ---------------------------------------------------------------------------- */
 

@@ -42,6 +42,21 @@
  *   SVM_WITH_LEARNED      policy `learned` (svm_set_chooser)
  * A policy left out runs as `uniform` when the options ask for it. Loading checks every image
  * the same way whatever the features (same checks, same result codes).
+ *
+ * Minimal profile (runtime_c/README.md, "The minimal profile"): the image is the generator's own
+ * constant, compiled into flash, and is not checked again at run time:
+ *   SVM_TRUSTED_IMAGE     the name of that image's symbol (e.g.
+ *                         -DSVM_TRUSTED_IMAGE=energy_worker_image, as the generated tables
+ *                         define it). svm_load_P then runs that one image without validating
+ *                         it (the compiler made every check when it wrote it) and refuses any
+ *                         other pointer with SVM_ERR_SOURCE; svm_load, svm_load_E and
+ *                         svm_validate do not exist, so no bytes from elsewhere (a stream, EEPROM,
+ *                         RAM) can reach the VM unchecked. Implies SVM_IMAGE_SOURCES =
+ *                         SVM_FLASH_ONLY and SVM_MASK_EXACT = 1. The limits must be the
+ *                         image's exact counts (the generated Makefile's): the step uses them
+ *                         as constants, and the load refuses an image of other counts.
+ * With the features above set to 0 and -ffunction-sections -Wl,--gc-sections this is the
+ * smallest VM (benchmarks/flash_vs_published.py).
  */
 #ifndef SWARMVM_H
 #define SWARMVM_H
@@ -61,13 +76,26 @@ extern "C" {
 #ifndef SVM_MAX_STATES
 #define SVM_MAX_STATES 65535
 #endif
-#ifndef SVM_MASK_EXACT
-#define SVM_MASK_EXACT 0
-#endif
 #define SVM_FLASH_OR_RAM 0
 #define SVM_FLASH_ONLY 1
 #define SVM_RAM_ONLY 2
 #define SVM_ANY_SOURCE 3
+#ifdef SVM_TRUSTED_IMAGE
+/* The trusted image is a constant in flash, read with the model's exact mask width: any other
+ * setting would read it as something it is not. */
+#ifndef SVM_MASK_EXACT
+#define SVM_MASK_EXACT 1
+#endif
+#ifndef SVM_IMAGE_SOURCES
+#define SVM_IMAGE_SOURCES SVM_FLASH_ONLY
+#endif
+#if !SVM_MASK_EXACT || SVM_IMAGE_SOURCES != SVM_FLASH_ONLY
+#error "SVM_TRUSTED_IMAGE runs the generator's image from flash: SVM_MASK_EXACT=1, SVM_IMAGE_SOURCES=SVM_FLASH_ONLY"
+#endif
+#endif
+#ifndef SVM_MASK_EXACT
+#define SVM_MASK_EXACT 0
+#endif
 #ifndef SVM_IMAGE_SOURCES
 #define SVM_IMAGE_SOURCES SVM_FLASH_OR_RAM
 #endif
@@ -231,6 +259,7 @@ typedef struct svm_vm {
 /* Empty VM: no image, default options (level, after-inputs, uniform), seed 1, no callbacks. */
 void svm_init(svm_vm_t *vm);
 
+#ifndef SVM_TRUSTED_IMAGE
 /* Validate `image` (`length` bytes, in RAM) and run it from its initial states. On a running
  * VM this is the swap: it happens between two steps, implies a reset, and rebinds runtime
  * bindings by event name when both images carry names. On error nothing changes. Never from a
@@ -248,6 +277,16 @@ int svm_load_E(svm_vm_t *vm, const uint8_t *image, uint16_t length);
 /* Check an image without loading it (same checks and result codes as svm_load); `source` is
  * SVM_SOURCE_RAM, _FLASH or _EEPROM. */
 int svm_validate(const uint8_t *image, uint16_t length, uint8_t source);
+#else
+/* The generator's image, defined by the generated tables (SVM_PROGMEM). */
+extern const uint8_t SVM_TRUSTED_IMAGE[];
+
+/* Minimal profile: run the image SVM_TRUSTED_IMAGE names, unchecked, from its initial states (on
+ * a running VM: the swap, as svm_load). Any other `image` is refused with SVM_ERR_SOURCE, an
+ * image whose counts are not exactly the build's limits with SVM_ERR_LIMITS; `length` is not
+ * read (the image says it). */
+int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length);
+#endif
 
 /* The image's checksum, CRC-16/MCRF4XX, one byte at a time: start from SVM_CRC16_INIT
  * (swarmvm_format.h). Also the checksum of the learned-parameter store (swarmvm_store.h). */

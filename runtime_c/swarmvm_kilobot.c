@@ -1,6 +1,6 @@
 /*
- * swarmvm on the Kilobot (kilolib, ATmega328P): the application runtime (swarmvm_kilobot.h says
- * what it does: step rate, messages, interrupts, streaming).
+ * swarmvm on the Kilobot (kilolib, ATmega328P): the runtime the program calls (swarmvm_kilobot.h
+ * says what it does: the calls, step rate, messages, seeds, interrupts, streaming).
  */
 #include "swarmvm_kilobot.h"
 
@@ -39,6 +39,8 @@ static svl_keeper_t keeper;
 
 static svm_vm_t vm;
 static uint32_t last_step;
+/* Set by the program (svm_kilobot_hold), maybe from an interrupt; one byte, so read whole. */
+static volatile uint8_t held;
 
 /* Shared with the IR receive interrupt (set there, taken here) and with the Timer0 transmit
  * interrupt (set here, cleared there once sent). */
@@ -73,7 +75,7 @@ static uint8_t bit_of(uint8_t event)
     return (uint8_t)(1u << (event & 7u));
 }
 
-const svm_vm_t *svm_kilobot_vm(void)
+svm_vm_t *svm_kilobot_vm(void)
 {
     return &vm;
 }
@@ -113,26 +115,29 @@ static void queue_chunk(const uint8_t *data)
 }
 #endif
 
-/* kilo_message_rx, in the IR receive interrupt. */
-static void on_message(message_t *message, distance_measurement_t *distance)
+/* In the IR receive interrupt: the VM's messages set their events' bits (or queue a chunk);
+ * the others go to the program's hook. */
+uint8_t svm_kilobot_receive(message_t *message, distance_measurement_t *distance)
 {
     const svm_kilobot_wire_t *wire;
     uint8_t event;
-    (void)distance;
 #if SVM_STREAM
     if (message->type == SVM_MSG_IMAGE_CHUNK) {
         queue_chunk(message->data);
-        return;
+        return 1;
     }
 #endif
-    if (message->type != NORMAL) {
-        return;
-    }
-    for (wire = svm_kilobot_wires; (event = wire_event(wire)) != SVM_KILOBOT_END; wire++) {
-        if (SVM_FLASH_BYTE(&wire->received) && flash_compare(message->data, wire->wire, sizeof message->data) == 0) {
-            received[event >> 3] |= bit_of(event);
+    if (message->type == NORMAL) {
+        /* at most one received event per payload: gen refuses messages that agree on 9 bytes */
+        for (wire = svm_kilobot_wires; (event = wire_event(wire)) != SVM_KILOBOT_END; wire++) {
+            if (SVM_FLASH_BYTE(&wire->received) && flash_compare(message->data, wire->wire, sizeof message->data) == 0) {
+                received[event >> 3] |= bit_of(event);
+                return 1;
+            }
         }
     }
+    svm_kilobot_on_message(message, distance);
+    return 0;
 }
 
 /* The wire of the next pending event after the last one sent (events take turns), or 0. */
@@ -152,8 +157,8 @@ static const svm_kilobot_wire_t *next_pending(void)
     return chosen;
 }
 
-/* kilo_message_tx, in the Timer0 interrupt: the message kilolib sends now, built here. */
-static message_t *message_tx(void)
+/* In the Timer0 interrupt: the message kilolib sends now, built here. */
+message_t *svm_kilobot_transmit(void)
 {
     const svm_kilobot_wire_t *wire = next_pending();
     if (wire == 0) {
@@ -166,8 +171,8 @@ static message_t *message_tx(void)
     return &outgoing;
 }
 
-/* kilo_message_tx_success, in the same interrupt: that event's message went out. */
-static void message_tx_success(void)
+/* In the same interrupt, after svm_kilobot_transmit's message went out. */
+void svm_kilobot_transmitted(void)
 {
     pending[outgoing_event >> 3] &= (uint8_t)~bit_of(outgoing_event);
 }
@@ -273,13 +278,12 @@ static uint32_t now(void)
 
 #if SVM_LEARNED
 /* The learned policy chooses; its parameters come from the EEPROM store when it holds them. */
-static void learn_start(void)
+static int learn_start(void)
 {
     svm_store_avr_eeprom(&store, SVM_KILOBOT_EEPROM_FREE, (uint16_t)SVM_KILOBOT_SLOT_BYTES);
-    if (svl_keeper_begin(&keeper, &policy, &vm, kilo_uid, theta, SVM_KILOBOT_THETA, words, &store,
-                         SVM_KILOBOT_KEEP_EVERY) < 0) {
-        set_color(RGB(3, 0, 0));    /* red: the model needs more than SVM_KILOBOT_THETA */
-    }
+    /* -1: the model needs more than SVM_KILOBOT_THETA */
+    return svl_keeper_begin(&keeper, &policy, &vm, vm.seed, theta, SVM_KILOBOT_THETA, words, &store,
+                            SVM_KILOBOT_KEEP_EVERY) < 0 ? -1 : SVM_OK;
 }
 
 void svm_kilobot_reward(int32_t reward_q16)
@@ -297,8 +301,55 @@ __attribute__((weak)) void svm_kilobot_after_step(void)
 {
 }
 
-static void setup(void)
+__attribute__((weak)) void svm_kilobot_on_begin(void)
 {
+}
+
+__attribute__((weak)) void svm_kilobot_on_message(message_t *message, distance_measurement_t *distance)
+{
+    (void)message;
+    (void)distance;
+}
+
+void svm_kilobot_hold(uint8_t hold)
+{
+    held = hold;
+}
+
+/* Options and seed to the VM (applied at its next reset: svm_load's, or the one here once an
+ * image runs), and the seed's low byte to kilolib's rand_soft, which the Nadzoru C API draws
+ * from on the Kilobot (-DSVM_SCT_RANDOM=rand_soft): so that it differs per robot too. */
+void svm_kilobot_set_options(uint8_t options, uint32_t seed)
+{
+    svm_set_options(&vm, options, seed);
+    rand_seed((uint8_t)seed);
+    if (vm.image != 0) {
+        svm_reset(&vm);
+    }
+}
+
+#if SVM_KILOBOT_SEED == SVM_KILOBOT_SEED_RAND_HARD
+/* Four bytes of rand_hard (noise of the ADC's lowest bit, debiased by kilolib). */
+static uint32_t robot_seed(void)
+{
+    uint32_t seed = 0;
+    uint8_t i;
+    for (i = 0; i < 4u; i++) {
+        seed = (seed << 8) | rand_hard();
+    }
+    return seed;
+}
+#else
+static uint32_t robot_seed(void)
+{
+    return SVM_KILOBOT_UID_SEED(kilo_uid);
+}
+#endif
+
+int svm_kilobot_begin(void)
+{
+    int result;
+    uint32_t seed = robot_seed();
     svm_init(&vm);
 #if SVM_STREAM
     svm_stream_init(&stream, stream_buffer, SVM_STREAM_BYTES);
@@ -306,37 +357,38 @@ static void setup(void)
 #else
     svm_set_dispatch(&vm, svm_kilobot_app_dispatch);
 #endif
-    /* Options (docs/semantics.md), e.g. the published Kilobot VM's behaviour:
-     * svm_set_options(&vm, SVM_INPUTS_EDGE | SVM_CONTROL_IF_QUIET, kilo_uid); */
-    if (svm_kilobot_app_load(&vm) != SVM_OK) {
-        set_color(RGB(3, 0, 0));    /* red: the image was refused */
-    }
+    /* svm_kilobot_set_options without its reset: the load below resets with this seed. */
+    svm_set_options(&vm, SVM_KILOBOT_OPTIONS, seed);
+    rand_seed((uint8_t)seed);
+    result = svm_kilobot_app_load(&vm);
 #if SVM_LEARNED
-    learn_start();
+    if (result == SVM_OK) {
+        result = learn_start();
+    }
 #endif
     last_step = now();
+    svm_kilobot_on_begin();
+    return result;
 }
 
-/* Once per SVM_KILOBOT_TICKS_PER_STEP kilolib ticks: take the chunks that came, step. */
-static void loop(void)
+uint8_t svm_kilobot_step(void)
 {
-    uint32_t ticks = now();
-    if ((uint32_t)(ticks - last_step) < SVM_KILOBOT_TICKS_PER_STEP) {
-        return;
-    }
-    last_step = ticks;
+    uint8_t fired;
 #if SVM_STREAM
     take_chunks();
 #endif
-    (void)svm_step(&vm);
+    fired = svm_step(&vm);
     svm_kilobot_after_step();
+    return fired;
 }
 
-void svm_kilobot_run(void)
+/* Once per SVM_KILOBOT_TICKS_PER_STEP kilolib ticks, unless held: a step. */
+void svm_kilobot_poll(void)
 {
-    kilo_init();
-    kilo_message_rx = on_message;
-    kilo_message_tx = message_tx;
-    kilo_message_tx_success = message_tx_success;
-    kilo_start(setup, loop);
+    uint32_t ticks = now();
+    if (held || (uint32_t)(ticks - last_step) < SVM_KILOBOT_TICKS_PER_STEP) {
+        return;
+    }
+    last_step = ticks;
+    (void)svm_kilobot_step();
 }

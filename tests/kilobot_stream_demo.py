@@ -33,6 +33,7 @@ from swarmvm.boundary.output import write_outputs  # noqa: E402
 from swarmvm.compiler.naming import callback_stem  # noqa: E402
 from swarmvm.compiler.runtime_files import python_vm, reference_vm  # noqa: E402
 from swarmvm.targets import generate  # noqa: E402
+from swarmvm.targets.kilobot import uid_seed  # noqa: E402
 
 CORPUS = ROOT / "tests" / "corpus" / "openswarm"
 SUPERVISOR_A = CORPUS / "hitl_leader.yaml"       # 10 events (6 public), 5 supervisors
@@ -41,6 +42,9 @@ NAME = "robot"
 # A kilolib tick by which the program runs: kilolib, idle, blinks its LED with 200 ms delays, so
 # it takes the RUN message (sent at tick 1) up to 7 ticks later; messages before that are lost.
 RUNNING = 12
+# The board's EEPROM is erased unless a test gives one: kilo_uid 0xFFFF, whose seed the VM draws
+# from (swarmvm_kilobot.h, SVM_KILOBOT_UID_SEED).
+ERASED_UID = 0xFFFF
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 CONTROLLER = r"""/* Test controller (tests/kilobot_stream_demo.py): checks follow a fixed pattern of the step
@@ -202,7 +206,8 @@ class Program:
         # streamed here have no more supervisors or states than A.
         kilolib = kilolib_dir()
         limits = re.findall(r"-DSVM_MAX_[A-Z_]+=[0-9]+", (self.workdir / "Makefile").read_text())
-        sources = ["%s_%s.c" % (NAME, part) for part in ("app", "controller", "tables")]
+        # The generated program's own files (main, app, controller, tables, dispatch).
+        sources = sorted(path.name for path in self.workdir.glob("%s_*.c" % NAME))
         self.elf = self.workdir / ("%s.elf" % NAME)
         subprocess.run(["avr-gcc", *c_harness.KILOBOT_FLAGS, *STRICT, *limits, "-DSVM_STREAM", *defines, "-I%s" % kilolib,
                         *sources, "swarmvm.c", "swarmvm_stream.c", "swarmvm_kilobot.c",
@@ -226,11 +231,12 @@ class Program:
         return tick + 1 - first
 
 
-def reference(compiled_a, image, first_tick, steps, received=()):
-    """Trace lines of ``image`` run from reset by the reference VM, step j at kilo_ticks
-    first_tick + j, its checks answered as the test controller does (events by name); a
-    public event's check is true once, at the tick of each (tick, "EV_x") in ``received``."""
-    vm = reference_vm().ReferenceVM(image)
+def reference(compiled_a, image, first_tick, steps, received=(), uid=ERASED_UID, **options):
+    """Trace lines of ``image`` run from reset by the reference VM with the seed of the robot
+    ``uid`` (and ``options``: inputs, control, policy, seed), step j at kilo_ticks first_tick + j,
+    its checks answered as the test controller does (events by name); a public event's check is
+    true once, at the tick of each (tick, "EV_x") in ``received``."""
+    vm = reference_vm().ReferenceVM(image, **{"seed": uid_seed(uid), **options})
     model = compiled_a.model
     own = {n: k for k, n in enumerate(model.events)}
     inputs = [e for e in range(vm.image.num_events)

@@ -121,8 +121,12 @@ def pack(inputs: tuple[str, ...], output: str, no_names: bool) -> None:
 @click.option("--learned-check", "learned", multiple=True, metavar="YES/NO",
               help="Decide the uncontrollable pair YES/NO (e.g. capableTask/notCapableTask) with an "
                    "online classifier on features the application supplies. Repeatable.")
+@click.option("--sct-header", metavar="NAME.h",
+              help="C targets: also write NAME.h, the header a published program on Nadzoru's C API includes "
+                   "(e.g. sct_work_and_charge.h): EV_x, NUM_EVENTS, NUM_SUPERVISORS, the SCT_* prototypes.")
 @reports_errors
-def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...]) -> None:
+def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, learned: tuple[str, ...],
+        sct_header: str | None) -> None:
     """Generate a target's VM sources: table image, tables, glue and a controller skeleton.
 
     INPUTS is a supervisor.yaml (Nadzoru 2), Nadzoru's C tables (.c, .h) or a table image
@@ -131,7 +135,7 @@ def gen(inputs: tuple[str, ...], target: str, outdir: str, name: str | None, lea
     rewritten on every run; a controller skeleton that already exists is never overwritten,
     and when its callbacks no longer match the model a warning names them and a fresh
     skeleton is written beside it as <file>.new."""
-    result = api.generate_target(inputs, target, outdir, name=name, learned=learned)
+    result = api.generate_target(inputs, target, outdir, name=name, learned=learned, sct_header=sct_header)
     if name is None and result.compiled.stem != Path(inputs[0]).stem:
         terminal.note("named the model %s after the folder of %s (give --name to choose another)"
                       % (result.compiled.name, inputs[0]))
@@ -200,8 +204,12 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 @click.option("--vm-limit", default=fp.VM_KPI, show_default=True, type=click.IntRange(0),
               help="Bytes the VM (core + tables, flash + RAM) may take: the seed's KPI.")
 @click.option("--indirect", multiple=True, metavar="CALLER=TARGET,...",
-              help="What an indirect call in CALLER may reach, for the worst-case stack (repeatable); "
-                   "an undeclared one makes the bound unknown.")
+              help="What an indirect call in CALLER may reach, for the worst-case stack (repeatable), added to "
+                   "what the image's target declares (a generated Kilobot project needs none); an undeclared one "
+                   "makes the bound unknown, which fails the checks of the stack.")
+@click.option("--frame", "frames", multiple=True, metavar="FUNCTION=BYTES",
+              help="The stack frame of a function without a -fstack-usage entry whose code does not make it "
+                   "certain (a library built without the flag), return address included (repeatable).")
 @click.option("--cycles", "cycles_path", type=click.Path(), metavar="SCRIPT",
               help="Run each image with this event script (Kilobot: simavr, CPU cycles; CapBot: QEMU, "
                    "instructions): mean and worst per step (checks answered through the dispatch declared "
@@ -210,14 +218,15 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
 def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | None, baseline_path: str | None,
               report_format: str, fail_on_growth: float | None, chart_path: str | None, runtime_sizes: bool,
               kilobot_flash: int, kilobot_stack: int, vm_limit: int, indirect: tuple[str, ...],
-              cycles_path: str | None) -> None:
+              frames: tuple[str, ...], cycles_path: str | None) -> None:
     """Report flash, static RAM and worst-case stack of linked VM images, split into VM core,
     tables and application.
 
     ELFS are linked images named <supervisor>.elf; the target comes from the machine (AVR:
     kilobot, ARM: capbot); the stack from the -fstack-usage files beside them. Prints Markdown or
     JUnit XML; exits with status 1 and one line per row over a limit or
-    budget, or grown past --fail-on-growth."""
+    budget or whose figure for one is unknown, or grown past --fail-on-growth or changed in a way
+    it cannot judge."""
     if fail_on_growth is not None and baseline_path is None:
         raise click.BadOptionUsage("--fail-on-growth", "growth is measured against a --baseline: give one")
     if budget_path is None and Path(fp_budget.PYPROJECT).is_file():
@@ -226,7 +235,7 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
     try:
         report = api.footprint_report(list(elfs), budget=budget_path, baseline=baseline_path,
                                       fail_on_growth=fail_on_growth, limits=limits, indirect=indirect,
-                                      cycles=cycles_path)
+                                      cycles=cycles_path, frames=frames)
     except fp.FootprintError as exc:
         terminal.fail(exc)
     # first, as one transaction: a file that cannot be written ends the command before any output

@@ -13,6 +13,7 @@ PANELS = ("flash", "ram")                       # one panel per total, its split
 PARTS = ("core", "tables", "application")
 LABEL_WIDTH, PANEL_WIDTH, GAP = 220, 320, 40
 TOP, ROW_HEIGHT, BAR_HEIGHT = 60, 28, 16
+LABEL_CHAR = 7.5                                # px per digit of a 12 px label, at most
 STYLE = (".core{fill:#4e79a7}.tables{fill:#f28e2b}.application{fill:#bab0ac}"
          ".budget{stroke:#d62728;stroke-width:2;stroke-dasharray:4 2}.limit{stroke:#000;stroke-width:2}"
          "text{font-family:sans-serif;font-size:12px}")
@@ -48,7 +49,11 @@ def _row(report: FootprintReport, index: int, scales: list[float]) -> list[str]:
             lines.append('<rect class="%s" x="%.1f" y="%d" width="%.1f" height="%d"><title>%s %s: %s, %d B</title></rect>'
                          % (part, x, top, width, BAR_HEIGHT, name, COLUMN[column].label, part, value))
             x += width
-        lines.append('<text x="%.1f" y="%.1f">%d</text>' % (x + 4, top + BAR_HEIGHT - 3, row.values[column]))
+        label = x + 4
+        for at in sorted(_x(panel) + bound * scales[panel] for bound in _bounds(report, row.name, column).values()):
+            if label - 2 <= at <= label + LABEL_CHAR * len(str(row.values[column])):
+                label = at + 4                  # a budget or limit line would strike the label through
+        lines.append('<text x="%.1f" y="%.1f">%d</text>' % (label, top + BAR_HEIGHT - 3, row.values[column]))
         for kind, bound in sorted(_bounds(report, row.name, column).items()):
             at = _x(panel) + bound * scales[panel]
             lines.append('<line class="%s" x1="%.1f" y1="%d" x2="%.1f" y2="%d"><title>%s %s: %d B</title></line>'

@@ -16,6 +16,7 @@ The dispatch a check goes through is one of the functions declared with
 ``--indirect svm_step=TARGET,...`` (the same declaration the worst-case stack needs).
 """
 
+import hashlib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,9 +24,10 @@ from pathlib import Path
 from elftools.elf.elffile import ELFFile
 from elftools.elf.sections import SymbolTableSection
 
-from ..boundary.errors import InputError
+from ..boundary.errors import ELF_MAX_BYTES, InputError, open_input
 from ..compiler.runtime_files import image_format
 from ..readers.event_script import read_script_rows
+from ..boundary.errors import read_input as read_script_bytes
 from ..targets import TARGETS
 from .cycles_m4 import m4_steps
 from .kilobot_board import KilobotToolMissing
@@ -44,6 +46,7 @@ class Cycles:
     script: str
     per_step: tuple[int, ...]
     worst_inputs: tuple[str, ...]
+    digest: str = ""            # sha256 of the script's bytes: cycles compare only across one script
 
     @property
     def mean(self) -> int:
@@ -58,13 +61,13 @@ class Cycles:
         return self.per_step.index(self.worst) + 1
 
     def as_json(self) -> dict[str, object]:
-        return dict(script=self.script, steps=len(self.per_step), mean=self.mean, worst=self.worst,
-                    worst_step=self.worst_step, worst_inputs=list(self.worst_inputs))
+        return dict(script=self.script, script_sha256=self.digest, steps=len(self.per_step), mean=self.mean,
+                    worst=self.worst, worst_step=self.worst_step, worst_inputs=list(self.worst_inputs))
 
 
 def _symbols(elf_path: str, names: set[str]) -> dict[str, int]:
     """Addresses of the named functions and objects of an ELF."""
-    with open(elf_path, "rb") as handle:
+    with open_input(elf_path, ELF_MAX_BYTES) as handle:
         table = ELFFile(handle).get_section_by_name(".symtab")
         if not isinstance(table, SymbolTableSection):
             return {}
@@ -97,14 +100,18 @@ def measure_cycles(elf: str, target: str, image: bytes, script: str, dispatch: t
     if STEP_ROOT not in addresses:
         raise FootprintError("%s: no %s in the image: --cycles runs a program that steps the VM" % (elf, STEP_ROOT))
     checks = [addresses[name] for name in dispatch if name in addresses]
+    if not dispatch:
+        raise FootprintError("%s: --cycles needs the dispatch svm_step calls: declare it with --indirect "
+                             "svm_step=NAME,... (target %s declares none)" % (elf, target))
     if not checks:
         raise FootprintError("%s: --cycles needs the dispatch svm_step calls, declared with --indirect svm_step=NAME,... "
-                             "(none of %s is in the image)" % (elf, ", ".join(dispatch) or "no name given"))
+                             "(none of %s is in the image)" % (elf, ", ".join(dispatch)))
     record = TARGETS[target].elf
     if record is None or record.emulator not in EMULATORS:
         raise FootprintError("%s: --cycles: no emulator runs target %s's images" % (elf, target))
     per_step = EMULATORS[record.emulator](elf, addresses, checks, masks)
-    return Cycles(script, per_step, inputs[per_step.index(max(per_step))])
+    digest = hashlib.sha256(read_script_bytes(script)).hexdigest()
+    return Cycles(script, per_step, inputs[per_step.index(max(per_step))], digest)
 
 
 def _m4_steps(elf: str, addresses: dict[str, int], checks: list[int], masks: list[bytes]) -> tuple[int, ...]:

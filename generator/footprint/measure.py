@@ -21,6 +21,7 @@ Only linked ELF files are read (pyelftools), so the figures are what the device 
 """
 
 import dataclasses
+import hashlib
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
@@ -33,6 +34,7 @@ from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
 from elftools.elf.sections import Section, Symbol, SymbolTableSection
 
+from ..boundary.errors import ELF_MAX_BYTES, open_input
 from .stack import Stack
 
 if TYPE_CHECKING:
@@ -104,6 +106,11 @@ class Footprint:
     ram: Split = field(default_factory=Split)
     stack: Stack | None = None          # worst-case stack (footprint_stack), when measured
     cycles: "Cycles | None" = None      # cycles per step with an event script (footprint_cycles)
+    tables_sha256: str | None = None    # the table image's digest: matches a renamed ELF with its baseline row
+    indirect: dict[str, tuple[str, ...]] = field(default_factory=dict)   # the declarations its stack used
+    elf_sha256: str | None = None       # what the figures are of: the file's digest and the toolchain it names
+    frames: dict[str, int] = field(default_factory=dict)     # frames declared with --frame
+    compiler: tuple[str, ...] = ()
 
     @property
     def vm(self) -> int:
@@ -114,6 +121,14 @@ class Footprint:
         """The image as the JSON report writes it (and a baseline holds it)."""
         image: dict[str, Any] = dict(target=self.target, supervisor=self.supervisor, elf=self.elf, flash=asdict(self.flash),
                      ram=asdict(self.ram), vm=self.vm)
+        if self.tables_sha256 is not None:
+            image["tables_sha256"] = self.tables_sha256
+        if self.elf_sha256 is not None:
+            image.update(elf_sha256=self.elf_sha256, compiler=list(self.compiler))
+        if self.indirect:
+            image["indirect"] = {caller: list(targets) for caller, targets in sorted(self.indirect.items())}
+        if self.frames:
+            image["frames"] = dict(sorted(self.frames.items()))
         if self.stack is not None:
             image["stack"] = self.stack.as_json()
         if self.cycles is not None:
@@ -150,11 +165,17 @@ STACK_COLUMN = {"total": "stack", "step": "stack_step"}    # Stack's figures -> 
 @dataclass(frozen=True)
 class Row:
     """A row of a report, measured now or read from a baseline: the figures by column key, and
-    why a figure that was measured is not known (a stack bound: ``indirect call in f``)."""
+    why a figure that was measured is not known (a stack bound: ``indirect call in f``); what
+    tells a comparison whether the rows are comparable: the table image's digest (a renamed ELF
+    of the same supervisor), the event script's digest (cycles of one script only), and the
+    budgets the row was checked against (a changed budget is shown)."""
     target: str
     supervisor: str
     values: dict[str, int]
     unknown: dict[str, str] = field(default_factory=dict)
+    tables_sha256: str | None = None
+    script_sha256: str | None = None
+    budget: dict[str, int] = field(default_factory=dict)
 
     @property
     def name(self) -> str:
@@ -175,7 +196,9 @@ def row_of(footprint: Footprint) -> Row:
     image = footprint.as_json()
     values = {c.key: column_value(image, c) for c in COLUMNS}
     unknown = {STACK_COLUMN[key]: reason for key, reason in image.get("stack", {}).get("unknown", {}).items()}
-    return Row(footprint.target, footprint.supervisor, {k: v for k, v in values.items() if v is not None}, unknown)
+    script = footprint.cycles.digest if footprint.cycles is not None else None
+    return Row(footprint.target, footprint.supervisor, {k: v for k, v in values.items() if v is not None}, unknown,
+               footprint.tables_sha256, script or None)
 
 
 class FootprintError(Exception):
@@ -272,7 +295,7 @@ def _is_image(elf: ELFFile, symbol: Symbol) -> bool:
 
 def table_image(path: ElfPath) -> bytes:
     """The bytes of the table image linked into an ELF (the first symbol holding one)."""
-    with open(path, "rb") as handle:
+    with open_input(os.fspath(path), ELF_MAX_BYTES) as handle:
         elf = ELFFile(handle)
         for symbol, _ in _symbols(elf):
             _check_symbol(path, elf, symbol)
@@ -304,7 +327,7 @@ def measure(path: ElfPath, supervisor: str | None = None, target: str | None = N
             runtime: Traversable = RUNTIME_C) -> Footprint:
     """The Footprint of one linked ELF; target from its machine, supervisor from its name."""
     core_names, core_files = runtime_names(runtime)
-    with open(path, "rb") as handle:
+    with open_input(os.fspath(path), ELF_MAX_BYTES) as handle:
         file_size = os.fstat(handle.fileno()).st_size
         elf = ELFFile(handle)
         if target is None:
@@ -329,6 +352,10 @@ def measure(path: ElfPath, supervisor: str | None = None, target: str | None = N
             if _is_image(elf, symbol):
                 bucket = "tables"
                 images += 1
+                if result.tables_sha256 is None:
+                    section = elf.get_section(symbol["st_shndx"])
+                    start = symbol["st_value"] - section["sh_addr"]
+                    result.tables_sha256 = hashlib.sha256(section.data()[start:start + symbol["st_size"]]).hexdigest()
             elif (local_file in core_files if local_file is not None else symbol.name in core_names) \
                     or (symbol["st_info"]["type"] == "STT_OBJECT" and VM_INSTANCE.search(symbol.name)):
                 bucket = "core"
@@ -339,6 +366,15 @@ def measure(path: ElfPath, supervisor: str | None = None, target: str | None = N
                     setattr(split, bucket, getattr(split, bucket) + symbol["st_size"])
         if images == 0:
             raise FootprintError("%s: no table image (magic %r) found among its symbols" % (path, FORMAT.MAGIC.decode()))
+        comment = elf.get_section_by_name(".comment")          # the compilers that built it ("GCC: (GNU) 5.4.0")
+        if comment is not None and comment["sh_type"] != "SHT_NOBITS":
+            result.compiler = tuple(dict.fromkeys(text.decode("utf-8", "replace").strip() for text in
+                                                  comment.data().split(b"\0") if text.strip()))
+        handle.seek(0)
+        digest = hashlib.sha256()
+        for block in iter(lambda: handle.read(1 << 16), b""):
+            digest.update(block)
+        result.elf_sha256 = digest.hexdigest()
     for split in (result.flash, result.ram):
         split.application = split.total - split.core - split.tables
     return result

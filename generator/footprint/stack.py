@@ -32,7 +32,7 @@ from elftools.elf.constants import SH_FLAGS
 from elftools.elf.elffile import ELFFile
 from elftools.elf.sections import SymbolTableSection
 
-from ..boundary.errors import InputError
+from ..boundary.errors import ELF_MAX_BYTES, SU_MAX_BYTES, InputError, open_input, read_input
 from ..targets import TARGETS
 
 STEP_ROOT = "svm_step"
@@ -44,6 +44,10 @@ AVR_VECTOR = re.compile(r"^__vector_\d+$")
 SWITCH_TABLE_HELPERS = frozenset({"__tablejump__", "__tablejump2__"})
 INSTRUCTION = re.compile(r"^\s*([0-9a-f]+):\s+(?:[0-9a-f]{2,8}\s)+\s*([a-z][\w.]*)\s*(.*)$")
 AVR_TARGET = re.compile(r";\s*0x([0-9a-f]+)\b")
+LABEL = re.compile(r"^([0-9a-f]+) <([^>]+)>:$")              # the label line before an address's code
+# Instructions after which code does not run on into the next address (a fragment of code that
+# ends otherwise falls through into what follows, an edge of its own).
+ENDS = {"avr": frozenset({"ret", "reti", "jmp", "rjmp", "ijmp", "eijmp"}), "arm": frozenset({"b", "bx"})}
 ARM_TARGET = re.compile(r"^([0-9a-f]+) <")
 AVR_SP = re.compile(r"^0x3[de]\b")
 ARM_REGISTERS = re.compile(r"\{([^}]*)\}")
@@ -66,6 +70,8 @@ class Function:
     pushes: int = 0                             # bytes the code's own pushes take
     moves_sp: bool = False                      # writes SP other than by push / sub sp, #N
     enables_interrupts: bool = False
+    fragment: bool = False                      # code in no sized function (see _fragments)
+    last: tuple[str, str] = ("", "")            # its last instruction: mnemonic, operands
 
 
 @dataclass(frozen=True)
@@ -94,6 +100,20 @@ def parse_indirect(declarations: Sequence[str]) -> dict[str, tuple[str, ...]]:
     return found
 
 
+def parse_frames(declarations: Sequence[str]) -> dict[str, int]:
+    """``FUNCTION=BYTES`` declarations (``--frame``) as {function: bytes}: the frame of a function
+    that has no .su entry and whose code alone does not make it certain (a library built without
+    -fstack-usage), the return address included, as gcc counts it on AVR; InputError naming the
+    one that is not of that form."""
+    found: dict[str, int] = {}
+    for index, text in enumerate(declarations):
+        name, equals, size = (part.strip() for part in text.partition("="))
+        if not equals or not name or not size.isdigit():
+            raise InputError("", "frame[%d]" % index, "%r is not FUNCTION=BYTES" % text)
+        found[name] = int(size)
+    return found
+
+
 def su_files(elf: Path, folders: tuple[Path, ...] = ()) -> list[Path]:
     """The ``.su`` files of an image: ``<elf name>-*.su`` beside it (gcc 11 and later, compiling
     and linking in one command), else every ``*.su`` in its folder (a build that compiled there,
@@ -109,7 +129,7 @@ def read_su(paths: list[Path]) -> dict[tuple[str, str], int | None]:
     """{(source file name, function): bytes, or None for a dynamic, unbounded frame}."""
     frames: dict[tuple[str, str], int | None] = {}
     for path in paths:
-        for line in path.read_text(errors="replace").splitlines():
+        for line in read_input(str(path), limit=SU_MAX_BYTES).decode("utf-8", "replace").splitlines():
             fields = line.split("\t")
             if len(fields) != 3:
                 continue
@@ -129,7 +149,7 @@ def _functions(elf_path: Path) -> dict[int, Function]:
     to the next function or the end of their section."""
     functions: dict[int, Function] = {}
     unsized: dict[int, tuple[str, int]] = {}
-    with open(elf_path, "rb") as handle:
+    with open_input(str(elf_path), ELF_MAX_BYTES) as handle:
         elf = ELFFile(handle)
         table = elf.get_section_by_name(".symtab")
         code = {i: s["sh_addr"] + s["sh_size"] for i, s in enumerate(elf.iter_sections())
@@ -172,6 +192,10 @@ def _read_avr(function: Function, address: int, mnemonic: str, operands: str, ne
         function.enables_interrupts = True
     elif mnemonic == "out" and AVR_SP.match(operands):
         function.moves_sp = True
+    elif mnemonic.startswith("br") and AVR_TARGET.search(operands):
+        target = int(AVR_TARGET.search(operands).group(1), 16)    # type: ignore[union-attr]
+        if not function.start <= target < function.end:
+            function.calls.add(target)          # a branch out of the function (assembly routines)
     elif mnemonic in ("call", "rcall", "jmp", "rjmp"):
         match = AVR_TARGET.search(operands)
         target = int(match.group(1), 16) if match else int(operands.split()[0], 16)
@@ -259,21 +283,71 @@ def read_code(elf_path: Path, target: str) -> dict[int, Function]:
     if tool is None:
         raise StackUnknown("%s not found (needed to read the call graph)" % arch.objdump)
     functions = _functions(elf_path)
-    starts = sorted(functions)
     listing = subprocess.run([tool, "-d", str(elf_path)],
                              capture_output=True, text=True, check=True).stdout
-    instructions = []
+    instructions, labels = [], []
     for line in listing.splitlines():
+        label = LABEL.match(line)
+        if label:
+            labels.append((int(label.group(1), 16), label.group(2)))
         match = INSTRUCTION.match(line)
         if match:
             instructions.append((int(match.group(1), 16), match.group(2), match.group(3).strip()))
+    _fragments(functions, instructions, labels)
+    starts = sorted(functions)
     for index, (address, mnemonic, operands) in enumerate(instructions):
         function = _containing(functions, starts, address)
         if function is not None:
             following = instructions[index + 1][0] if index + 1 < len(instructions) else address + 2
-            arch.reader(function, address, mnemonic,
-                        operands.split(arch.comment)[0].strip() if arch.comment else operands, following)
+            operands = operands.split(arch.comment)[0].strip() if arch.comment else operands
+            arch.reader(function, address, mnemonic, operands, following)
+            function.last = (mnemonic, operands)
+    name = TARGETS[target].elf.architecture                 # type: ignore[union-attr]  # architecture() checked it
+    for function in functions.values():
+        if function.fragment and not _ends(name or "", *function.last):
+            function.calls.add(function.end)    # runs on into the next code: counted as a call
     return functions
+
+
+def _fragments(functions: dict[int, Function], instructions: list[tuple[int, str, str]],
+               labels: list[tuple[int, str]]) -> None:
+    """Functions for the code that lies in no sized function: avr-libc's float routines give
+    ``__addsf3`` no size, so the code between ``__subsf3``'s end and ``__addsf3x`` is in none,
+    and ``__addsf3x`` jumps into it. Each run of such instructions becomes a function of its own,
+    named as objdump labels its first address (``__addsf3+0xc``), read like any other; one that
+    does not end in a return or jump runs on into what follows, an edge (read_code). Its frame
+    is then what its code shows, plus what a call pushes, an upper bound for code entered by a
+    jump."""
+    starts = sorted(functions)
+    label_starts = [address for address, _ in labels]
+    current: Function | None = None
+    for index, (address, _, _) in enumerate(instructions):
+        following = instructions[index + 1][0] if index + 1 < len(instructions) else address + 2
+        if _containing(functions, starts, address) is not None:
+            current = None
+            continue
+        if current is not None and current.end == address and address not in functions:
+            current.end = following
+            continue
+        at = bisect.bisect_right(label_starts, address) - 1
+        name = "0x%x" % address if at < 0 else labels[at][1] if labels[at][0] == address else \
+            "%s+0x%x" % (labels[at][1], address - labels[at][0])
+        current = Function(name, address, following, fragment=True)
+        functions[address] = current
+    for function in functions.values():     # a fragment stops where the next function starts
+        if function.fragment:
+            later = [s for s in starts if s > function.start]
+            if later and later[0] < function.end:
+                function.end = later[0]
+
+
+def _ends(architecture_name: str, mnemonic: str, operands: str) -> bool:
+    """Whether code does not run on past this instruction (a return, an unconditional jump)."""
+    base = mnemonic.split(".")[0]
+    if base in ENDS.get(architecture_name, frozenset()):
+        return True
+    return architecture_name == "arm" and (base in ("pop", "ldm", "ldmia") and "pc" in operands
+                                           or base == "ldr" and operands.startswith("pc"))
 
 
 @dataclass
@@ -284,6 +358,7 @@ class CallGraph:
     frames: dict[tuple[str, str], int | None]
     indirect: dict[str, tuple[str, ...]]
     bounds: dict[int, int] = field(default_factory=dict)
+    declared_frames: dict[str, int] = field(default_factory=dict)       # --frame, for functions without .su
 
     def named(self, name: str) -> list[Function]:
         return [f for f in self.functions.values() if f.name == name]
@@ -302,9 +377,12 @@ class CallGraph:
             if any(size is None for size in candidates):
                 raise StackUnknown("dynamic stack frame in %s" % function.name)
             return max(c for c in candidates if c is not None)
+        if function.name in self.declared_frames:
+            return self.declared_frames[function.name]
         if function.moves_sp:
-            raise StackUnknown("no stack usage data for %s (no .su entry, and its code moves the stack pointer)"
-                               % function.name)
+            raise StackUnknown("no stack usage data for %s (no .su entry, and its code moves the stack pointer): "
+                               "compile it with -fstack-usage and put its .su file beside the ELF, or declare its "
+                               "frame with --frame %s=BYTES" % (function.name, function.name))
         return function.pushes + architecture(self.target).call_pushes
 
     def declared(self, function: Function) -> tuple[str, ...] | None:
@@ -365,14 +443,16 @@ class CallGraph:
 
 
 def measure_stack(elf: str, target: str, indirect: dict[str, tuple[str, ...]] | None = None,
-                  su_folders: tuple[Path, ...] = ()) -> Stack:
-    """The worst-case stack of the VM step and of the whole program of a linked image."""
+                  su_folders: tuple[Path, ...] = (), frames: dict[str, int] | None = None) -> Stack:
+    """The worst-case stack of the VM step and of the whole program of a linked image; ``frames``:
+    the declared frames of functions without a .su entry (parse_frames)."""
     paths = su_files(Path(elf), su_folders)
     if not paths:
         reason = "no -fstack-usage data (.su files) beside %s" % Path(elf).name
         return Stack(None, None, {"step": reason, "total": reason})
     try:
-        graph = CallGraph(target, read_code(Path(elf), target), read_su(paths), dict(indirect or {}))
+        graph = CallGraph(target, read_code(Path(elf), target), read_su(paths), dict(indirect or {}),
+                          declared_frames=dict(frames or {}))
     except subprocess.CalledProcessError as exc:
         reason = "%s could not read it (%s)" % (architecture(target).objdump, exc.stderr.strip().splitlines()[-1:])
         return Stack(None, None, {"step": reason, "total": reason})

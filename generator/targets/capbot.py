@@ -4,6 +4,7 @@ nRF52840, and how footprint reads the bare-metal Cortex-M4F image the project li
 
 from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import TEMPLATES
+from .c import file_order
 from .record import Elf, Target
 from .values import C_RUNTIME_GROUPS, c_copies, features, sources
 
@@ -12,7 +13,8 @@ def values(compiled: Compiled) -> dict[str, object]:
     """The CMakeLists.txt: the runtime it compiles (more with ``SVM_LEARNED``, the store on
     Zephyr's flash last) and its features (main.c matches the logic page's events by name)."""
     return dict(runtime_sources=sources("core", "logic_page"), learned_sources=sources("learn"),
-                store_sources=sources("store_zephyr"), features=features(compiled.tables.probs is not None, names=True))
+                store_sources=sources("store_zephyr"), features=features(compiled.tables.probs is not None, names=True),
+                **file_order(compiled))
 
 
 TARGET = Target(
@@ -24,6 +26,7 @@ TARGET = Target(
                ("capbot/main.c.j2", "src/main.c", False),
                ("c/tables.h.j2", "src/{name}_tables.h", False),
                ("c/tables.c.j2", "src/{name}_tables.c", False),
+               ("c/dispatch.c.j2", "src/{name}_dispatch.c", False),
                ("capbot/controller.c.j2", "src/{name}_controller.c", True)),
     template_folder=TEMPLATES / "capbot",
     page="robots/capbot.md",

@@ -10,12 +10,20 @@ from ..compiler.model import Model
 from ..compiler.naming import EventNames, event_names
 from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import TEMPLATES
+from .c import file_order
 from .record import Elf, RobotLimits, Target
 from .values import C_RUNTIME_GROUPS, c_copies, features, headers, sources
 
 KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
 # 32 KB of flash minus the bootloader at 0x7000; 2 KB of SRAM, 1 KB of it left to the stack
 LIMITS = RobotLimits("Kilobot", flash=28672, sram=2048, min_stack=1024)
+# What the indirect calls of a generated Kilobot program reach (docs/footprint.md, "Stack"): the
+# dispatch the Kilobot runtime (runtime_c/swarmvm_kilobot.c) registers with the VM, the setup and
+# loop it gives kilolib's kilo_start, and the message callbacks it (or kilolib's defaults) put in
+# the pointers kilolib's timer (__vector_14) and comparator (__vector_23) interrupts call.
+KILOBOT_INDIRECT = ("svm_step=svm_kilobot_app_dispatch,dispatch", "kilo_start=setup,loop",
+                    "__vector_14=message_tx,message_tx_success,message_tx_dummy,message_tx_success_dummy",
+                    "__vector_23=on_message,message_rx_dummy")
 
 
 def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:
@@ -32,6 +40,14 @@ def kilobot_messages(model: Model, events: list[EventNames]) -> list[str]:
                              % (first.const, e.const, first.message, e.message, e.message[:KILOBOT_MESSAGE_BYTES],
                                 KILOBOT_MESSAGE_BYTES), "event %s" % e.const)
     return list(dict.fromkeys(e.message for e in events if e.message is not None))
+
+
+def uid_seed(uid: int) -> int:
+    """The seed a Kilobot's VM runs with by default (runtime_c/swarmvm_kilobot.h,
+    SVM_KILOBOT_UID_SEED): its kilo_uid in the top 16 bits, the uid's complement in the bottom 16,
+    so that a robot's run can be replayed (e.g. ``ReferenceVM(image, seed=uid_seed(uid))``)."""
+    uid &= 0xFFFF
+    return uid << 16 | (~uid & 0xFFFF)
 
 
 def rules(compiled: Compiled) -> dict[str, object]:
@@ -52,16 +68,19 @@ def values(compiled: Compiled) -> dict[str, object]:
                 stream_sources=sources("stream"), learned_sources=sources("learn"),
                 features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),
                 payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES]
-                          for e in event_names(compiled.model) if e.message is not None})
+                          for e in event_names(compiled.model) if e.message is not None},
+                **file_order(compiled))
 
 
 TARGET = Target(
     "kilobot",
     "Kilobot application (kilolib, ATmega328P): tables in PROGMEM, messages as public events, new images streamed over messages, Makefile, controller skeleton",
     templates=(("c/tables.h.j2", "{name}_tables.h", False),
-               ("kilobot/tables.c.j2", "{name}_tables.c", False),
+               ("c/tables.c.j2", "{name}_tables.c", False),
+               ("kilobot/dispatch.c.j2", "{name}_dispatch.c", False),
                ("kilobot/app.h.j2", "{name}_app.h", False),
                ("kilobot/app.c.j2", "{name}_app.c", False),
+               ("kilobot/main.c.j2", "{name}_main.c", False),
                ("kilobot/Makefile.j2", "Makefile", False),
                ("kilobot/controller.c.j2", "{name}_controller.c", True)),
     template_folder=TEMPLATES / "kilobot",
@@ -71,4 +90,4 @@ TARGET = Target(
     build=("make", "-s", "{name}.elf"),     # with KILOLIB=<kilolib's build folder>
     limits=LIMITS,
     elf=Elf("EM_AVR", architecture="avr", emulator="kilobot_board", make_rule="{build}/kilobot/{name}.elf",
-            platform_runtime=("swarmvm_kilobot.c",)))
+            platform_runtime=("swarmvm_kilobot.c",), indirect=KILOBOT_INDIRECT))

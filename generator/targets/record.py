@@ -40,13 +40,18 @@ class Elf:
     (swarmvm.footprint.cycles.EMULATORS), None when nothing does. ``make_rule`` is the project's
     make target that builds a corpus supervisor's image (mk/<target>.mk), as the tests build them;
     ``platform_runtime`` the runtime sources that run the VM as a robot's program (counted as
-    application by the footprint, not as VM core)."""
+    application by the footprint, not as VM core); ``indirect`` what the indirect calls of the
+    generated program reach (its runtime's and platform library's), so that a generated project
+    needs no ``--indirect`` of its own: gen writes that code, so it knows them."""
     machine: str
     architecture: str | None = None
     emulator: str | None = None
     symbols: tuple[str, ...] = ()
     make_rule: str | None = None            # {build}: the BUILD folder, {name}: the supervisor
     platform_runtime: tuple[str, ...] = ()  # its runtime_c/ sources around the VM: application, not VM core
+    # What the indirect calls of an image built from the generated project reach (--indirect's
+    # CALLER=TARGET,... form): footprint's stack and cycles use them, with the user's own added.
+    indirect: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

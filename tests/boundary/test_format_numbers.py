@@ -40,6 +40,7 @@ ALLOWED = {
     ("compiler/naming.py", 255): (1, "FILE_NAME_BYTES: file systems' limit on a file name"),
     ("targets/kilobot.py", 9): (1, "KILOBOT_MESSAGE_BYTES itself: the payload of kilolib's message_t"),
     ("compiler/naming.py", 65535): (1, "message_code folds FNV-1a to 16 bits (ARGoS range-and-bearing codes)"),
+    ("targets/kilobot.py", 65535): (2, "uid_seed: kilolib's kilo_uid is 16 bits, the seed its two halves"),
     ("readers/supervisor_yaml.py", 255): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
     ("readers/supervisor_yaml.py", 256): (2, "Nadzoru's sup_data writes a target as two bytes, hi and lo"),
     ("models/export.py", 255): (1, "writing Nadzoru's sup_data: a target as two bytes, hi and lo"),

@@ -49,6 +49,6 @@ def test_a_kilobot_message_carries_the_first_message_bytes_of_its_name(tmp_path,
     """Cut in Python to the record's length, the one its collision rule (kilobot_messages) uses:
     a template that cut it again, to its own length, would show when that length changes."""
     compiled = _model(tmp_path, ["a_long_message_name"])
-    assert '{EV_a_long_message_name, 0, "a_long_me"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()
+    assert '{0 /* EV_a_long_message_name */, 0, "a_long_me"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()
     monkeypatch.setattr(kilobot_target, "KILOBOT_MESSAGE_BYTES", 5)
-    assert '{EV_a_long_message_name, 0, "a_lon"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()
+    assert '{0 /* EV_a_long_message_name */, 0, "a_lon"},' in generate(compiled, "kilobot")["m_app.c"][0].decode()

@@ -2,7 +2,7 @@
 
 import pytest
 
-from footprint_images import build_deeper, build_images, build_larger, build_slower
+from footprint_images import build_deeper, build_estimate, build_float, build_images, build_larger, build_slower
 
 
 @pytest.fixture(scope="session")
@@ -28,3 +28,15 @@ def deeper(build, tmp_path_factory):
 def slower(build, tmp_path_factory):
     """The Kilobot energy_worker with a busy-waiting check (footprint_images.SLOWER)."""
     return build_slower(build, tmp_path_factory.mktemp("slower") / "energy_worker")
+
+
+@pytest.fixture(scope="session")
+def floating(build, tmp_path_factory):
+    """The Kilobot energy_worker with float arithmetic in a check (footprint_images.FLOAT)."""
+    return build_float(build, tmp_path_factory.mktemp("float") / "energy_worker")
+
+
+@pytest.fixture(scope="session")
+def estimating(build, tmp_path_factory):
+    """The Kilobot energy_worker with a check calling kilolib's estimate_distance() (footprint_images.ESTIMATE)."""
+    return build_estimate(build, tmp_path_factory.mktemp("estimate") / "energy_worker")

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from checkout import EXAMPLE, ROOT
 from swarmvm import api
+from swarmvm.targets.kilobot import TARGET as KILOBOT_TARGET
 from target_builds import image_path, make_images, measured_targets
 
 NAMES = ("energy_worker", "network_worker")
@@ -47,12 +48,8 @@ DEEPER = """
     return deeper[0];
 """ % DEEPER_ARRAY
 # What the indirect calls of the Kilobot runtime (runtime_c/swarmvm_kilobot.c) and kilolib reach, as
-# docs/footprint.md ("Stack") declares them:
-# the dispatch it registers, the setup and loop it gives kilo_start, the message callbacks it (or
-# kilolib's defaults) put in the pointers that kilolib's timer and comparator interrupts call.
-KILOBOT_INDIRECT = ("svm_step=svm_kilobot_app_dispatch,dispatch", "kilo_start=setup,loop",
-                    "__vector_14=message_tx,message_tx_success,message_tx_dummy,message_tx_success_dummy",
-                    "__vector_23=on_message,message_rx_dummy")
+# docs/footprint.md ("Stack") declares them: the Kilobot target's record, where footprint reads them.
+KILOBOT_INDIRECT = KILOBOT_TARGET.elf.indirect
 
 
 SLOWER_LOOPS = 50
@@ -73,6 +70,28 @@ def build_deeper(root: Path, folder: Path) -> Path:
 def build_slower(root: Path, folder: Path) -> Path:
     """The same, with the check of atWork busy-waiting SLOWER_LOOPS rounds: a slower VM step."""
     return _with_check(root, folder, SLOWER)
+
+
+FLOAT = """
+    static volatile float level = 1.5f;    /* tests/footprint: float arithmetic (avr-libc's __addsf3, __mulsf3) */
+    return level * 3.0f + level > 4.0f;
+"""
+ESTIMATE = """
+    static distance_measurement_t heard;   /* tests/footprint: kilolib's float estimate (built without .su) */
+    return estimate_distance(&heard) > 50;
+"""
+
+
+def build_float(root: Path, folder: Path) -> Path:
+    """The example with a check doing float arithmetic: avr-libc's assembly routines, one of
+    them (``__addsf3``) without a size, in the VM step's call graph."""
+    return _with_check(root, folder, FLOAT)
+
+
+def build_estimate(root: Path, folder: Path) -> Path:
+    """The example with a check calling kilolib's estimate_distance(): float code of a library
+    built without -fstack-usage whose frame its code alone does not make certain."""
+    return _with_check(root, folder, ESTIMATE)
 
 
 def _with_check(root: Path, folder: Path, body_text: str) -> Path:
@@ -97,6 +116,11 @@ def _make(folder: Path) -> Path:
 
 
 def elf(build: Path, target: str, name: str) -> Path:
+    """The image of ``target`` and ``name``: for the Kilobot, where its generated Makefile built it,
+    beside the .su files the worst-case stack needs (the copy make puts in build/kilobot/ has none,
+    and an unknown stack fails the Kilobot's SRAM limit: fail closed)."""
+    if target == "kilobot":
+        return build / "kilobot" / "gen" / name / ("%s.elf" % name)
     return image_path(build, target, name)
 
 

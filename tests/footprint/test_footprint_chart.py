@@ -11,8 +11,8 @@ from swarmvm.footprint import measure as footprint
 SVG = "{http://www.w3.org/2000/svg}"
 
 
-def chart(*args, path):
-    result = swarmvm_footprint(*args, "--chart", path)
+def chart(*args, path, cwd=None):
+    result = swarmvm_footprint(*args, "--chart", path, cwd=cwd)
     assert result.returncode in (0, 1), result.stderr
     return ET.parse(path).getroot()
 
@@ -54,18 +54,19 @@ def test_the_same_report_gives_the_same_bytes(build, tmp_path):
 
 def test_a_name_with_markup_cannot_break_the_chart_or_the_reports(build, tmp_path):
     """The supervisor's name is the ELF's: `<b>&"x'|*.elf` reaches the SVG as text, the JUnit XML
-    as an attribute and the Markdown as a cell, each escaped for its context."""
+    as an attribute and the Markdown as a cell, each escaped for its context. Run away from the
+    checkout: its pyproject.toml budgets a row energy_worker, which no image of this run is."""
     name = "<b>&\"x'|*"
     image = tmp_path / (name + ".elf")
     image.write_bytes(elf(build, "kilobot", "energy_worker").read_bytes())
-    root = chart(image, path=tmp_path / "f.svg")
+    root = chart(image, path=tmp_path / "f.svg", cwd=tmp_path)
     assert list(groups(root)) == ["kilobot/" + name]
     assert [t.text for t in groups(root)["kilobot/" + name].iter(SVG + "text")][0] == "kilobot/" + name
-    junit = swarmvm_footprint(image, "--format", "junit", "--kilobot-flash", "10")
+    junit = swarmvm_footprint(image, "--format", "junit", "--kilobot-flash", "10", cwd=tmp_path)
     cases = ET.fromstring(junit.stdout).findall(".//testcase")
     assert {c.get("classname") for c in cases} == {"kilobot/" + name}
     assert cases[0].find("failure").text.startswith("kilobot/%s: flash " % name)
-    markdown = swarmvm_footprint(image).stdout
+    markdown = swarmvm_footprint(image, cwd=tmp_path).stdout
     assert "| kilobot | \\<b\\>&\"x'\\|\\* | " in markdown
 
 
@@ -92,3 +93,20 @@ def test_json_and_chart_are_one_transaction(build, tmp_path):
     assert report.read_text() == "old\n"
     both = swarmvm_footprint(elf(build, "kilobot", "energy_worker"), "--json", report, "--chart", tmp_path / "c.svg")
     assert both.returncode == 0 and report.read_text().startswith("{") and (tmp_path / "c.svg").is_file()
+
+
+def test_no_budget_or_limit_line_strikes_a_value_label(build, tmp_path):
+    """A budget just above the figure put its line across the label written after the bar
+    (issue 36, point 7): the label now starts after such a line."""
+    image = elf(build, "kilobot", "energy_worker")
+    measured = footprint.measure(image)
+    budget = tmp_path / "budget.toml"
+    budget.write_text("[kilobot]\nflash = %d\nram = %d\n" % (measured.flash.total + 400, measured.ram.total + 20))
+    (group,) = groups(chart(image, "--budget", budget, path=tmp_path / "f.svg", cwd=tmp_path)).values()
+    labels = [t for t in group.iter(SVG + "text") if t.text and t.text.isdigit()]
+    assert [t.text for t in labels] == [str(measured.flash.total), str(measured.ram.total)]
+    for line in group.iter(SVG + "line"):
+        at = float(line.get("x1"))
+        for label in labels:
+            start = float(label.get("x"))
+            assert not start - 2 <= at <= start + 7.5 * len(label.text), (line.get("class"), at, start)

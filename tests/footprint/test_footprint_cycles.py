@@ -55,7 +55,7 @@ def test_the_report_has_mean_and_worst_and_names_the_worst_step(build, tmp_path)
     assert result.returncode == 0, result.stderr
     image = json.loads((tmp_path / "r.json").read_text())["images"][0]
     cycles = image["cycles"]
-    assert set(cycles) == {"script", "steps", "mean", "worst", "worst_step", "worst_inputs"}
+    assert set(cycles) == {"script", "script_sha256", "steps", "mean", "worst", "worst_step", "worst_inputs"}
     assert cycles["steps"] == 12 and cycles["mean"] <= cycles["worst"]
     assert "| cycles/step | worst cycles/step |" in result.stdout
     rows = [line for line in events.read_text().splitlines() if not line.startswith("#")]
@@ -91,10 +91,12 @@ def test_a_slower_step_shows_in_the_delta(build, slower, tmp_path):
     assert "grew by more than 5 %" in grown.stderr and "cycles (+" in grown.stderr, grown.stderr
 
 
-def test_without_the_dispatch_declared_the_command_says_so(build, tmp_path):
-    result = swarmvm_footprint(example(build), "--cycles", random_event_script(tmp_path), cwd=tmp_path)
-    assert result.returncode == 2
-    assert "--indirect svm_step=" in result.stderr and len(result.stderr.splitlines()) == 1
+def test_without_the_dispatch_declared_the_targets_record_gives_it(build, tmp_path):
+    """The Kilobot target's record declares the dispatch (issue 36, point 8): no --indirect needed."""
+    events = random_event_script(tmp_path)
+    result = swarmvm_footprint(example(build), "--cycles", events, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert cycles_of(example(build), events, indirect=()).per_step == cycles_of(example(build), events).per_step
 
 
 def test_a_script_naming_an_unknown_event_is_bad_input(build, tmp_path):
@@ -109,8 +111,7 @@ def test_the_documented_commands(build, tmp_path):
     events = subprocess.run(["swarmvm", "script", str(SUPERVISOR), "--steps", "20", "--seed", "3"], check=True,
                             capture_output=True, text=True).stdout
     (tmp_path / "events.txt").write_text(events)
-    result = swarmvm_footprint(example(build), "--indirect", "svm_step=svm_kilobot_app_dispatch,dispatch",
-                               "--cycles", "events.txt", cwd=tmp_path)
+    result = swarmvm_footprint(example(build), "--cycles", "events.txt", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "kilobot/energy_worker: events.txt, 20 steps: mean " in result.stdout
     assert " at step 15 (inputs: EV_atWork " in result.stdout

@@ -49,8 +49,10 @@ def test_the_larger_image_shows_its_delta_in_bytes_and_per_cent(build, larger, b
     assert result.returncode == 0, result.stderr
     cells = table_rows(result.stdout)[("kilobot", "energy_worker")]
     assert cells[0] == "changed"
-    assert cells[1] == "%d (+%d B, +%.2f %%)" % (after.flash.total, grown, 100 * grown / before.flash.total)
-    assert cells[5] == "%d (+%d B, +%.2f %%)" % (after.ram.total, BALLAST_RAM, 100 * BALLAST_RAM / before.ram.total)
+    assert cells[1] == "%d (was %d: +%d B, +%.2f %%)" % (after.flash.total, before.flash.total, grown,
+                                                          100 * grown / before.flash.total)
+    assert cells[5] == "%d (was %d: +%d B, +%.2f %%)" % (after.ram.total, before.ram.total, BALLAST_RAM,
+                                                          100 * BALLAST_RAM / before.ram.total)
     assert cells[2] == str(after.flash.core)                     # the VM core did not change: no delta shown
     assert ("Against %s: 1 changed, 0 new, 0 removed, 3 unchanged; in total over the 4 rows in both: "
             "flash (+%d B, " % (baseline, grown)) in result.stdout
@@ -85,7 +87,7 @@ def test_changed_rows_come_first_and_unchanged_ones_are_folded(build, larger, ba
 
 def test_without_a_baseline_the_table_is_todays(build):
     result = swarmvm_footprint(elf(build, "kilobot", "energy_worker"))
-    assert "<details>" not in result.stdout and "| change |" not in result.stdout
+    assert "unchanged row" not in result.stdout and "| change |" not in result.stdout    # (the checks fold too)
     assert "| target | supervisor | flash | VM core | tables | application | RAM | VM core | tables | application | VM |" \
         in result.stdout
 
@@ -103,6 +105,7 @@ def test_junit_has_a_testcase_per_row_and_check_and_the_failure(build, larger, b
     assert sorted((c.get("classname"), c.get("name")) for c in cases) == sorted([
         ("kilobot/energy_worker", "flash <= 28672 B (limit)"), ("kilobot/energy_worker", "ram <= 1024 B (limit)"),
         ("kilobot/energy_worker", "vm <= 100000 B (limit)"), ("kilobot/energy_worker", "flash <= %d B (budget)" % bound),
+        ("kilobot/energy_worker", "stack <= %d B (limit)" % (2048 - footprint.measure(larger).ram.total)),
         ("kilobot/energy_worker", "growth <= 50 % per column"),
         ("capbot/energy_worker", "vm <= 100000 B (limit)"), ("capbot/energy_worker", "growth <= 50 % per column")])
     failed = [c for c in cases if c.find("failure") is not None]
@@ -196,13 +199,18 @@ def test_two_images_of_the_same_row_are_one_line(build, tmp_path):
 def docs_commands():
     """The pipeline commands of docs/footprint.md (the block after "In a pipeline")."""
     text = DOCS.read_text()
-    block = re.search(r"In a pipeline.*?```\n(.*?)```", text, re.S).group(1)
+    block = re.search(r"In a pipeline.*?```\n(.*?)```", text, re.S).group(1).replace("\\\n", "")
     return [shlex.split(line.split("  #")[0]) for line in block.splitlines()]
 
 
-def run_docs_command(words, image, cwd):
-    """One documented command with the example's image replaced by ``image``; ``> FILE`` done here."""
-    words = [str(image) if w == "build/kilobot/energy_worker.elf" else w for w in words]
+def run_docs_command(words, image, cwd, build=None):
+    """One documented command with the example's image replaced by ``image`` (and the network
+    worker's by ``build``'s); ``> FILE`` done here."""
+    images = {"build/kilobot/gen/energy_worker/energy_worker.elf": str(image)}
+    if build is not None:
+        images["build/kilobot/gen/network_worker/network_worker.elf"] = str(elf(build, "kilobot", "network_worker"))
+    assert all(w in images for w in words if w.endswith(".elf")), words
+    words = [images.get(w, w) for w in words]
     output = None
     if ">" in words:
         output = cwd / words[words.index(">") + 1]
@@ -222,10 +230,10 @@ def test_the_documented_pipeline_passes_the_same_image_and_catches_the_larger_on
     assert json.loads((tmp_path / "footprint.json").read_text())["version"] == 1
     same = run_docs_command(compare, elf(build, "kilobot", "energy_worker"), tmp_path)
     assert same.returncode == 0 and (tmp_path / "footprint.svg").is_file(), same.stderr
-    assert run_docs_command(junit, elf(build, "kilobot", "energy_worker"), tmp_path).returncode == 0
+    assert run_docs_command(junit, elf(build, "kilobot", "energy_worker"), tmp_path, build).returncode == 0
     grown = run_docs_command(compare, larger, tmp_path)
     assert grown.returncode == 1 and "grew by more than 5 %: " in grown.stderr
-    over = run_docs_command(junit, larger, tmp_path)
+    over = run_docs_command(junit, larger, tmp_path, build)
     assert over.returncode == 1
     failures = ET.parse(tmp_path / "footprint-junit.xml").getroot().findall(".//failure")
     assert [f.get("type") for f in failures] == ["budget"] and "ram" in failures[0].get("message")

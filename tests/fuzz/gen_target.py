@@ -108,10 +108,15 @@ def _argos_includes() -> tuple:
 
 
 def _make_variable(makefile: Path, variable: str) -> list:
-    """The words of ``VARIABLE = ...`` in a generated Makefile."""
+    """The words of ``VARIABLE = ...`` in a generated Makefile, a word ``$(OTHER)`` replaced by
+    OTHER's words (the Kilobot's SOURCES start with ``$(MAIN)``, the program a user may swap)."""
     match = re.search(r"^%s\s*=(.*)$" % variable, makefile.read_text(), re.MULTILINE)
     assert match, "%s: no %s" % (makefile, variable)
-    return match.group(1).split()
+    words = []
+    for word in match.group(1).split():
+        reference = re.fullmatch(r"\$\((\w+)\)", word)
+        words += _make_variable(makefile, reference.group(1)) if reference else [word]
+    return words
 
 
 def _compile_c(folder: Path, command: list, includes: list, scratch: Path) -> list:

@@ -84,7 +84,7 @@ def test_public_events_show_as_message_wiring_in_the_goldens(feature):
     kilobot = golden_text(model, "kilobot", "{name}_app.c")
     pipuck = golden_text(model, "pipuck", "{name}_controller.py")
     for e in public:
-        assert '{%s, %d, "%s"}' % (e.const, not e.controllable, e.message[:9]) in kilobot
+        assert '{%d /* %s */, %d, "%s"}' % (e.index, e.const, not e.controllable, e.message[:9]) in kilobot
         assert ("%s(%du" % ("Send" if e.controllable else "Heard", e.code)) in argos
         assert 'self.robot.%s("%s")' % ("broadcast" if e.controllable else "received", e.message) in pipuck
 

@@ -7,7 +7,7 @@ CI=true they fail instead."""
 import os
 
 import pytest
-from argos_project import CORPUS, NO_ARGOS, build, find_argos, generate
+from targets.argos.argos_project import CORPUS, NO_ARGOS, build, find_argos, generate
 
 
 @pytest.fixture(scope="session")

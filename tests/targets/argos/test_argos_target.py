@@ -7,7 +7,7 @@ import re
 import subprocess
 
 import pytest
-from argos_project import CORPUS, generate
+from targets.argos.argos_project import CORPUS, generate
 
 from swarmvm.compiler.naming import callback_stem, message_code, message_name
 from swarmvm.compiler.pipeline import compile_inputs

@@ -4,7 +4,7 @@ warning; a user action that throws stops the experiment with one ARGoS error nam
 controller, the robot, the event and the callback (swarmvm::CallbackError, docs/semantics.md)."""
 
 import pytest
-from argos_project import build, experiment, generate, run_argos
+from targets.argos.argos_project import build, experiment, generate, run_argos
 from conformance.cases import supervisor_yaml
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]

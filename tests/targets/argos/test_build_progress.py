@@ -9,7 +9,7 @@ import re
 import subprocess
 import tarfile
 
-from argos_project import ARGOS_SH, find_argos
+from targets.argos.argos_project import ARGOS_SH, find_argos
 
 FAKE_SOURCE = """cmake_minimum_required(VERSION 3.10)
 project(fake_argos C)

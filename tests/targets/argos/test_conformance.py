@@ -6,7 +6,7 @@ The swarm's traces, one per robot, also make an inspector page (docs/inspect.md)
 step holds the states each robot's trace gives."""
 
 import pytest
-from argos_project import experiment, reference_trace, robot_lines, robot_seed, run_argos, write_script
+from targets.argos.argos_project import experiment, reference_trace, robot_lines, robot_seed, run_argos, write_script
 
 from conformance.inspected import inspected_states, states_of
 

@@ -6,7 +6,7 @@ runs with one random_seed write byte-identical output and another seed a differe
 import re
 
 import pytest
-from argos_project import CORPUS, build, experiment, generate, robot_lines, run_argos
+from targets.argos.argos_project import CORPUS, build, experiment, generate, robot_lines, run_argos
 
 pytestmark = [pytest.mark.emulator, pytest.mark.slow]
 

@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from argos_project import ARGOS_SH, CORPUS, NO_ARGOS, generate
+from targets.argos.argos_project import ARGOS_SH, CORPUS, NO_ARGOS, generate
 
 
 def argos_sh(env):

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from argos_project import ARGOS_SH, needed_libraries, switch_blocks
+from targets.argos.argos_project import ARGOS_SH, needed_libraries, switch_blocks
 
 from checkout import ROOT
 from swarmvm import api

@@ -23,7 +23,7 @@ pytestmark = pytest.mark.emulator   # runs simavr or QEMU
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c",
-                  "src/energy_worker_tables.h", "src/energy_worker_tables.c",
+                  "src/energy_worker_tables.h", "src/energy_worker_tables.c", "src/energy_worker_dispatch.c",
                   "src/energy_worker_controller.c", "src/swarmvm_format.h", "src/swarmvm_crc_tables.h",
                   "src/swarmvm.h", "src/swarmvm.c",
                   "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/swarmvm_logic_page.h",

@@ -79,7 +79,7 @@ def test_messages_in_both_directions_none_lost(program):
     assert len(fired) >= 2 and fired <= {m.data.rstrip(b"\0").decode() for m in result.tx}
 
 
-SHARED = ("received", "pending", "chunk_slot", "chunk_head", "chunk_tail", "from_stream")
+SHARED = ("received", "pending", "chunk_slot", "chunk_head", "chunk_tail", "from_stream", "held")
 
 
 def test_variables_shared_with_interrupts_are_volatile_and_taken_atomically():

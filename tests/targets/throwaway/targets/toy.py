@@ -34,6 +34,7 @@ TARGET = Target(
     "A throwaway host robot: tables, controller skeleton, a main stepping the VM ten times, Makefile",
     templates=(("c/tables.h.j2", "{name}_tables.h", False),
                ("c/tables.c.j2", "{name}_tables.c", False),
+               ("c/dispatch.c.j2", "{name}_dispatch.c", False),
                ("c/controller.c.j2", "{name}_controller.c", True),
                ("toy/main.c.j2", "{name}_main.c", False),
                ("toy/Makefile.j2", "Makefile", False)),
