@@ -16,7 +16,10 @@ KILOBOT_OUT := $(BUILD)/kilobot$(if $(filter 1,$(STREAM)),-stream)
 setup:
 	@VENV=$(VENV) scripts/setup.sh
 
+# `make prove` first (mk/prove.mk: Eva over the C runtime, its alarms against tests/proof/alarms.txt;
+# its timings: docs/proof.md).
 test: setup typecheck
+	$(MAKE) --no-print-directory prove
 	$(PYTHON) -m pytest tests
 
 typecheck: setup

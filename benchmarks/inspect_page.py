@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests" / "inspect"))
+sys.path.insert(0, str(ROOT / "tests" / "inspector"))
 
 from browser import Browser, missing  # noqa: E402
 from swarmvm import api  # noqa: E402

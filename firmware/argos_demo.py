@@ -23,7 +23,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "argos")]
+sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "targets" / "argos")]
 os.environ["PATH"] = os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"]   # swarmvm beside python
 
 from argos_project import (build, experiment, find_argos, generate, reference_trace,  # noqa: E402

@@ -230,7 +230,8 @@ def trace(inputs: Sequence[str], script_path: str, seed: int = 1, input_mode: st
           control: str = "after-inputs", policy: str = "uniform") -> Iterator[str]:
     """The canonical trace lines of the reference VM replaying an event script, produced as
     they are read (a script of millions of steps in constant memory); bad input raises
-    InputError here, before the first line.
+    InputError here, before the first line (``script_path`` ``-``, standard input: past its
+    first errors.MAX_BYTES, when the bad line is reached).
 
     ``inputs`` is a supervisor or one ``.svm`` image (which must carry event names)."""
     image = _image_of(inputs)

@@ -8,6 +8,26 @@
 /* Inlining hint for the step's helpers (C99 `inline` on a static function). */
 #define SVM_INLINE inline
 
+/* The mask and cursor helpers and the enabled set: in the minimal profile always inlined, so
+ * that a cursor lives in registers and, for one-byte masks, its byte loops fold away (GCC's -Os
+ * otherwise keeps them as functions and the cursors on the stack; benchmarks/flash_vs_published.py
+ * measured it smaller and faster); elsewhere a hint, as the other helpers (other builds'
+ * code is unchanged by it). */
+#if defined(SVM_TRUSTED_IMAGE) && defined(__GNUC__)
+#define SVM_MASK_INLINE inline __attribute__((always_inline))
+#else
+#define SVM_MASK_INLINE SVM_INLINE
+#endif
+
+/* The minimal profile with masks of one or two bytes visits a mask's events one bit at a time
+ * over the whole mask (a shift of one or two bytes per event), instead of a byte at a time:
+ * fewer instructions and no mask kept on the stack. */
+#if defined(SVM_TRUSTED_IMAGE) && SVM_MASK_BYTES <= 2
+#define FLAT_MASKS 1
+#else
+#define FLAT_MASKS 0
+#endif
+
 /* The transition code (fire), called once in the step: a function on the bare-metal Cortex-M4
  * (CapBot, -Os), where inlining it into the step costs instructions per step on the models with
  * several supervisors; inlined elsewhere (docs/footprint.md, "Cost per step";
@@ -93,7 +113,7 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define SUPS_AT(m) (SVM_HEADER_SIZE + 2u * (uint16_t)(m))
 #define SUP_SIZE(m) ((uint16_t)(m) + 6u)
 #define STATE_SIZE(m) ((uint16_t)(m) + 2u)
-#define SUP_AT(vm, s) (SUPS_AT((vm)->mask_bytes) + (uint16_t)(s) * SUP_SIZE((vm)->mask_bytes))
+#define SUP_AT(vm, s) (SUPS_AT(VM_MASK_BYTES(vm)) + (uint16_t)(s) * SUP_SIZE(VM_MASK_BYTES(vm)))
 /* vm->state[s] is the supervisor's *global* state number: its record is at
  * states_at + state * STATE_SIZE(m), found without reading the supervisor's first state. */
 
@@ -102,6 +122,7 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
  * compiler folds into the step: fewer loads, no multiplication at run time, less flash. */
 #ifdef SVM_TRUSTED_IMAGE
 #define VM_EVENTS(vm) ((void)(vm), (uint8_t)SVM_MAX_EVENTS)
+#define VM_MASK_BYTES(vm) ((void)(vm), (uint8_t)SVM_MASK_BYTES)
 #define VM_SUPERVISORS(vm) ((void)(vm), (uint8_t)SVM_MAX_SUPERVISORS)
 #define TRUSTED_STATES_AT ((uint16_t)(SUPS_AT(SVM_MASK_BYTES) + SVM_MAX_SUPERVISORS * SUP_SIZE(SVM_MASK_BYTES)))
 #define TRUSTED_TARGETS_AT ((uint16_t)(TRUSTED_STATES_AT + (uint32_t)SVM_MAX_STATES * STATE_SIZE(SVM_MASK_BYTES)))
@@ -114,10 +135,32 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #endif
 #else
 #define VM_EVENTS(vm) ((vm)->num_events)
+#define VM_MASK_BYTES(vm) ((vm)->mask_bytes)
 #define VM_SUPERVISORS(vm) ((vm)->num_supervisors)
 #define VM_STATES_AT(vm) ((vm)->states_at)
 #define VM_TARGETS_AT(vm) ((vm)->targets_at)
 #define VM_NARROW(vm) ((vm)->width == 1u)
+#endif
+
+/* The step's image (the loaded one: its own symbol as a constant measured larger in the step)
+ * and where it lives: in the minimal profile always program memory on AVR, a plain read
+ * elsewhere, a constant. */
+#define VM_IMAGE(vm) ((vm)->image)
+#ifdef SVM_TRUSTED_IMAGE
+#if defined(__AVR__)
+#define VM_SOURCE(vm) ((void)(vm), (uint8_t)SVM_SOURCE_FLASH)
+#else
+#define VM_SOURCE(vm) ((void)(vm), (uint8_t)SVM_SOURCE_RAM)
+#endif
+#else
+#define VM_SOURCE(vm) ((vm)->source)
+#endif
+
+/* The step's options: the build's (SVM_TRUSTED_OPTIONS, the minimal profile), or the VM's. */
+#ifdef SVM_TRUSTED_OPTIONS
+#define VM_OPTIONS(vm) ((void)(vm), (uint8_t)(SVM_TRUSTED_OPTIONS))
+#else
+#define VM_OPTIONS(vm) ((vm)->options)
 #endif
 
 /* A loaded image's mask width, clamped to 1..SVM_MASK_BYTES for the compiler's sake (load has
@@ -143,6 +186,17 @@ static const uint8_t ones_in[256] SVM_PROGMEM = {
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
     return SVM_FLASH_BYTE(ones_in + x);
+}
+#elif defined(SVM_TRUSTED_IMAGE) && ((defined(__arm__) && !defined(__linux__)) || defined(__AVR__))
+/* The minimal profile on AVR and bare-metal ARM: one bit cleared per set bit (the fewest bytes;
+ * the masks it counts, below an event or of a state, have few bits). */
+static SVM_INLINE uint8_t popcount8(uint8_t x)
+{
+    uint8_t count = 0;
+    for (; x != 0u; x = (uint8_t)(x & (x - 1u))) {
+        count++;
+    }
+    return count;
 }
 #else
 static SVM_INLINE uint8_t popcount8(uint8_t x)
@@ -195,7 +249,7 @@ typedef struct mask {
 #endif
 
 /* The image's mask of `m` bytes at `p`. */
-static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
+static SVM_MASK_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
 {
     mask_t mask = 0;
     if (m == SVM_MASK_BYTES && IN_FLASH(source)) {
@@ -208,7 +262,7 @@ static SVM_INLINE mask_t mask_read(uint8_t source, const uint8_t *p, uint8_t m)
 }
 
 /* A mask kept in RAM as SVM_MASK_BYTES bytes, and back (`m` bytes). */
-static SVM_INLINE mask_t mask_load(const uint8_t *bytes)
+static SVM_MASK_INLINE mask_t mask_load(const uint8_t *bytes)
 {
     mask_t mask = 0;
     uint8_t i;
@@ -218,7 +272,7 @@ static SVM_INLINE mask_t mask_load(const uint8_t *bytes)
     return mask;
 }
 
-static SVM_INLINE void mask_store(uint8_t *bytes, mask_t mask, uint8_t m)
+static SVM_MASK_INLINE void mask_store(uint8_t *bytes, mask_t mask, uint8_t m)
 {
     for (; m != 0u; m--) {
         *bytes++ = (uint8_t)mask;
@@ -226,10 +280,10 @@ static SVM_INLINE void mask_store(uint8_t *bytes, mask_t mask, uint8_t m)
     }
 }
 
-static SVM_INLINE mask_t mask_and(mask_t a, mask_t b) { return (mask_t)(a & b); }
-static SVM_INLINE mask_t mask_and_not(mask_t a, mask_t b) { return (mask_t)(a & (mask_t)~b); }
-static SVM_INLINE mask_t mask_or_not(mask_t a, mask_t b) { return (mask_t)(a | (mask_t)~b); }
-static SVM_INLINE uint8_t mask_any(mask_t a) { return a != 0u; }
+static SVM_MASK_INLINE mask_t mask_and(mask_t a, mask_t b) { return (mask_t)(a & b); }
+static SVM_MASK_INLINE mask_t mask_and_not(mask_t a, mask_t b) { return (mask_t)(a & (mask_t)~b); }
+static SVM_MASK_INLINE mask_t mask_or_not(mask_t a, mask_t b) { return (mask_t)(a | (mask_t)~b); }
+static SVM_MASK_INLINE uint8_t mask_any(mask_t a) { return a != 0u; }
 
 /* Events 0 .. n-1 (n <= 8 * SVM_MASK_BYTES); MASK_LOW_MAX: all SVM_MAX_EVENTS, a constant. */
 static mask_t mask_low(uint8_t n)
@@ -244,6 +298,7 @@ static mask_t mask_low(uint8_t n)
     return mask;
 }
 #define MASK_LOW_MAX ((mask_t)((((mask_t)1u << (SVM_MAX_EVENTS - 1)) << 1) - 1u))
+#define MASK_NONE ((mask_t)0u)
 
 /* Cursor over a mask's events: `rest` holds the events not visited yet, shifted down by
  * `base` (a multiple of 8). */
@@ -252,27 +307,27 @@ typedef struct cursor {
     uint8_t base;
 } cursor_t;
 
-static SVM_INLINE void cursor_start(cursor_t *c, mask_t mask)
+static SVM_MASK_INLINE void cursor_start(cursor_t *c, mask_t mask)
 {
     c->rest = mask;
     c->base = 0;
 }
 
-static SVM_INLINE uint8_t cursor_any(const cursor_t *c) { return c->rest != 0u; }
-static SVM_INLINE uint8_t cursor_byte(const cursor_t *c) { return (uint8_t)c->rest; }
+static SVM_MASK_INLINE uint8_t cursor_any(const cursor_t *c) { return c->rest != 0u; }
+static SVM_MASK_INLINE uint8_t cursor_byte(const cursor_t *c) { return (uint8_t)c->rest; }
 
 /* Leave the current 8 events unvisited. */
-static SVM_INLINE void cursor_skip_byte(cursor_t *c)
+static SVM_MASK_INLINE void cursor_skip_byte(cursor_t *c)
 {
     c->rest = (mask_t)(c->rest >> 8);
     c->base = (uint8_t)(c->base + 8u);
 }
 
 /* Clear bit `bit` of the current byte. */
-static SVM_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
+static SVM_MASK_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
 
 /* A cursor over the one event `e` (no shift of a whole mask). */
-static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
+static SVM_MASK_INLINE void cursor_single(cursor_t *c, uint8_t e)
 {
     c->rest = (mask_t)(1u << (e & 7u));
     c->base = (uint8_t)(e & 0xF8u);
@@ -354,6 +409,7 @@ static mask_t mask_low(uint8_t n)
     return mask;
 }
 #define MASK_LOW_MAX mask_low(SVM_MAX_EVENTS)
+#define MASK_NONE mask_low(0u)
 
 /* Cursor: the events not visited yet, and the index of the current byte. */
 typedef struct cursor {
@@ -393,7 +449,7 @@ static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
 
 #endif /* MASK_ARRAY */
 
-static SVM_INLINE uint8_t mask_count(mask_t a)
+static SVM_MASK_INLINE uint8_t mask_count(mask_t a)
 {
     cursor_t c;
     uint8_t count = 0;
@@ -404,7 +460,7 @@ static SVM_INLINE uint8_t mask_count(mask_t a)
 }
 
 /* The next event of the cursor (which has one), then visited. */
-static SVM_INLINE uint8_t cursor_next(cursor_t *c)
+static SVM_MASK_INLINE uint8_t cursor_next(cursor_t *c)
 {
     uint8_t low;
     while ((low = cursor_byte(c)) == 0u) {
@@ -785,7 +841,9 @@ SVM_COLD void svm_init(svm_vm_t *vm)
     vm->chooser = 0;
     vm->chooser_ctx = 0;
 #endif
+#if SVM_WITH_VIOLATIONS
     vm->on_violation = 0;
+#endif
 #if SVM_WITH_FIRST
     vm->priority = 0;
     vm->priority_by_name = 0;
@@ -799,15 +857,24 @@ SVM_COLD void svm_reset(svm_vm_t *vm)
     /* Every accepted image has masks of SVM_MASK_BYTES in an exact build, and starts each
      * supervisor in its local state 0 (the load's checks, or the compiler for a trusted image):
      * its global initial state is its first. */
-    uint8_t s, m = SVM_MASK_EXACT ? (uint8_t)SVM_MASK_BYTES : vm->mask_bytes;
+    uint8_t s, m = SVM_MASK_EXACT ? (uint8_t)SVM_MASK_BYTES : VM_MASK_BYTES(vm);
+#ifdef SVM_TRUSTED_IMAGE
+    /* The profile's one image, whose counts are the build's: read at its own address, loaded or
+     * not (before a load the states are not read: every reader checks that an image is loaded). */
+    const uint8_t *record = (const uint8_t *)SVM_TRUSTED_IMAGE + SUPS_AT(m) + m;
+    for (s = 0; s < SVM_MAX_SUPERVISORS; s++, record += SUP_SIZE(m)) {
+#else
     const uint8_t *record = vm->image + SUPS_AT(m) + m;    /* first state, count, initial */
     for (s = 0; s < vm->num_supervisors; s++, record += SUP_SIZE(m)) {
-        vm->state[s] = (svm_state_t)peek16(vm->source, record);
+#endif
+        vm->state[s] = (svm_state_t)peek16(VM_SOURCE(vm), record);
     }
     for (s = 0; s < SVM_MASK_BYTES; s++) {
         vm->previous[s] = 0;
     }
+#if SVM_WITH_VIOLATIONS
     vm->violations = 0;
+#endif
     vm->rng = vm->seed ? vm->seed : SVM_ZERO_SEED;
 }
 
@@ -865,7 +932,7 @@ static SVM_COLD int rebind_by_name(svm_vm_t *vm, const uint8_t *image, uint8_t s
     uint8_t map[SVM_MAX_EVENTS] = {0};     /* zeroed only for gcc's flow analysis: entries past */
     uint8_t moved[SVM_MASK_BYTES];          /* `limit` are never read (-Wmaybe-uninitialized at */
     uint8_t e, cap = vm->bindings_cap;      /* SVM_MAX_EVENTS=1 on arm-none-eabi-gcc)            */
-    uint8_t limit = vm->num_events < cap ? vm->num_events : cap;
+    uint8_t limit = VM_EVENTS(vm) < cap ? VM_EVENTS(vm) : cap;
     for (e = 0; e < SVM_MASK_BYTES; e++) {
         moved[e] = 0;
     }
@@ -913,7 +980,7 @@ static SVM_COLD int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t 
     uint8_t k;
     for (k = 0; k < vm->priority_count; k++) {
         int to = -1;
-        if (vm->priority_by_name[k] < vm->num_events) {
+        if (vm->priority_by_name[k] < VM_EVENTS(vm)) {
             to = lay->names_at == 0 ? -1 : find_in_new(vm, image, source, lay, vm->priority_by_name[k]);
             if (to < 0) {
                 return SVM_ERR_NAMES;
@@ -937,40 +1004,44 @@ static SVM_COLD int rebind_priority(svm_vm_t *vm, const uint8_t *image, uint8_t 
  * compiler. Its sections follow from the header (docs/image-format.md). */
 SVM_COLD int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length)
 {
-#if defined(__AVR__)
-    const uint8_t source = SVM_SOURCE_FLASH;
-#else
-    const uint8_t source = SVM_SOURCE_RAM;      /* a plain read, as svm_load_P's elsewhere */
-#endif
-    uint8_t e, n, width;
-    uint16_t states;
+    /* The header's counts, num_events, num_supervisors and num_states (bytes 6-9, little-endian),
+     * as the build's limits give them; with them the image's mask width (ceil(E / 8)) and, for
+     * 256 states or fewer, its state width (1) are the compiler's, and the step's constants. */
+    const uint8_t source = VM_SOURCE(vm);
+    uint32_t counts;
     (void)length;
     if (image != SVM_TRUSTED_IMAGE) {
         return SVM_ERR_SOURCE;
     }
-    e = rd_raw(image, source, SVM_AT_NUM_EVENTS);
-    n = rd_raw(image, source, SVM_AT_NUM_SUPERVISORS);
-    width = rd_raw(image, source, SVM_AT_STATE_WIDTH);
-    states = rd16_raw(image, source, SVM_AT_NUM_STATES);
-    /* The step takes the counts as the build's constants (VM_EVENTS...): the image must have
-     * exactly these limits, as the generated Makefile gives them. */
-    if (rd_raw(image, source, SVM_AT_MASK_BYTES) != SVM_MASK_BYTES || e != SVM_MAX_EVENTS ||
-        n != SVM_MAX_SUPERVISORS || states != SVM_MAX_STATES) {
+#if defined(__AVR__)
+    counts = pgm_read_dword(image + SVM_AT_NUM_EVENTS);
+#else
+    counts = (uint32_t)image[SVM_AT_NUM_EVENTS] | ((uint32_t)image[SVM_AT_NUM_EVENTS + 1] << 8) |
+             ((uint32_t)image[SVM_AT_NUM_EVENTS + 2] << 16) | ((uint32_t)image[SVM_AT_NUM_EVENTS + 3] << 24);
+#endif
+    if (counts != ((uint32_t)SVM_MAX_EVENTS | ((uint32_t)SVM_MAX_SUPERVISORS << 8) | ((uint32_t)SVM_MAX_STATES << 16))) {
         return SVM_ERR_LIMITS;
     }
+#if !SVM_WITH_PUBLIC
+    /* A build without the public pass runs only an image without public events. */
+    if (mask_any(mask_read(source, image + PUBLIC_AT(SVM_MASK_BYTES), SVM_MASK_BYTES))) {
+        return SVM_ERR_LIMITS;
+    }
+#endif
+    /* What the inspection functions read (the step takes the build's constants instead). */
     vm->image = image;
     vm->source = source;
-    vm->num_events = e;
-    vm->num_supervisors = n;
-    vm->width = width;
+    vm->num_events = (uint8_t)SVM_MAX_EVENTS;
+    vm->num_supervisors = (uint8_t)SVM_MAX_SUPERVISORS;
     vm->mask_bytes = SVM_MASK_BYTES;
-    vm->states_at = TRUSTED_STATES_AT;
-    vm->targets_at = TRUSTED_TARGETS_AT;
+#if SVM_MAX_STATES > 256 || SVM_WITH_WEIGHTED || SVM_WITH_LEARNED || SVM_WITH_NAMES
+    vm->width = READ(image, source, SVM_AT_STATE_WIDTH);
+#endif
 #if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED || SVM_WITH_NAMES
     {   /* the sections after the targets, read only by the features that use them */
         uint8_t flags = rd_raw(image, source, SVM_AT_FLAGS);
         uint16_t trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
-        uint16_t pos = (uint16_t)(TRUSTED_TARGETS_AT + trans * width);
+        uint16_t pos = (uint16_t)(TRUSTED_TARGETS_AT + trans * vm->width);
 #if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
         vm->probs_at = (flags & SVM_FLAG_PROBS) ? pos : 0u;
 #endif
@@ -1083,7 +1154,7 @@ SVM_COLD int svm_bind(svm_vm_t *vm, uint8_t event, svm_action_fn action, svm_che
     if (vm->bindings == 0) {
         return SVM_ERR_NO_BINDINGS;
     }
-    if (vm->image == 0 || event >= vm->num_events || event >= vm->bindings_cap ||
+    if (vm->image == 0 || event >= VM_EVENTS(vm) || event >= vm->bindings_cap ||
         (check != 0 && svm_is_controllable(vm, event))) {
         return SVM_ERR_EVENT;
     }
@@ -1126,10 +1197,12 @@ void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count)
 }
 #endif
 
+#if SVM_WITH_VIOLATIONS
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook)
 {
     vm->on_violation = hook;
 }
+#endif
 
 static void act(svm_vm_t *vm, uint8_t event)
 {
@@ -1175,6 +1248,7 @@ static SVM_INLINE uint16_t successor(uint8_t src, const uint8_t *st, uint8_t m, 
     return (uint16_t)(peek16(src, st + m) + rank);
 }
 
+#if SVM_WITH_VIOLATIONS
 static void violate(svm_vm_t *vm, uint8_t event, uint8_t s)
 {
     if (vm->violations != SVM_MAX_VIOLATIONS) {
@@ -1184,17 +1258,18 @@ static void violate(svm_vm_t *vm, uint8_t event, uint8_t s)
         vm->on_violation(vm, event, s);
     }
 }
+#endif
 
 /* Docs/semantics.md step 3: move every supervisor that has the event, count violations, then
  * run the event's action. Supervisor records are walked in order, without multiplications.
  * `m` is the mask width: see step_m for why it is a parameter. */
 static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
-    const uint8_t *img = vm->image;
+    const uint8_t *img = VM_IMAGE(vm);
     const uint8_t *states = img + VM_STATES_AT(vm), *targets = img + VM_TARGETS_AT(vm);
     const uint8_t *sup = img + SUPS_AT(m);
     svm_state_t *state = vm->state;
-    uint8_t src = vm->source, n = VM_SUPERVISORS(vm), narrow = VM_NARROW(vm), s;
+    uint8_t src = VM_SOURCE(vm), n = VM_SUPERVISORS(vm), narrow = VM_NARROW(vm), s;
     for (s = 0; s < n; s++, sup += SUP_SIZE(m)) {
         const uint8_t *st;
         uint8_t defined;
@@ -1205,7 +1280,9 @@ static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit
         st = states + (uint16_t)state[s] * STATE_SIZE(m);
         defined = PEEK(src, st + byte);
         if (!(defined & bit)) {
+#if SVM_WITH_VIOLATIONS
             violate(vm, event, s);
+#endif
             continue;
         }
         t = successor(src, st, m, defined, byte, bit);
@@ -1216,11 +1293,11 @@ static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit
 }
 
 /* The enabled controllable events among `candidates` (docs/semantics.md step 5). */
-static SVM_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint8_t m)
+static SVM_MASK_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint8_t m)
 {
-    const uint8_t *img = vm->image, *sup = img + SUPS_AT(m), *states = img + VM_STATES_AT(vm);
+    const uint8_t *img = VM_IMAGE(vm), *sup = img + SUPS_AT(m), *states = img + VM_STATES_AT(vm);
     const svm_state_t *state = vm->state;
-    uint8_t src = vm->source, s;
+    uint8_t src = VM_SOURCE(vm), s;
     for (s = VM_SUPERVISORS(vm); s != 0u; s--, sup += SUP_SIZE(m)) {
         const uint8_t *st = states + (uint16_t)*state++ * STATE_SIZE(m);
         candidates = mask_and(candidates, mask_or_not(mask_read(src, st, m), mask_read(src, sup, m)));
@@ -1236,7 +1313,7 @@ static SVM_INLINE mask_t valid_events(const svm_vm_t *vm)
 
 static SVM_INLINE mask_t enabled_m(const svm_vm_t *vm, uint8_t m)
 {
-    mask_t controllable = mask_read(vm->source, vm->image + CONTROLLABLE_AT, m);
+    mask_t controllable = mask_read(VM_SOURCE(vm), VM_IMAGE(vm) + CONTROLLABLE_AT, m);
     return enabled_set(vm, mask_and(controllable, valid_events(vm)), m);
 }
 
@@ -1247,14 +1324,14 @@ uint8_t svm_enabled(const svm_vm_t *vm, uint8_t *enabled)
         return 0;
     }
 #if !SVM_MASK_EXACT
-    if (vm->mask_bytes != SVM_MASK_BYTES) {
-        mask = enabled_m(vm, MASK_WIDTH(vm->mask_bytes));
+    if (VM_MASK_BYTES(vm) != SVM_MASK_BYTES) {
+        mask = enabled_m(vm, MASK_WIDTH(VM_MASK_BYTES(vm)));
     } else
 #endif
     {
         mask = enabled_m(vm, SVM_MASK_BYTES);
     }
-    mask_store(enabled, mask, vm->mask_bytes);
+    mask_store(enabled, mask, VM_MASK_BYTES(vm));
     return mask_count(mask);
 }
 
@@ -1263,14 +1340,14 @@ uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
     uint32_t weight = SVM_Q15_ONE;
-    uint8_t src = vm->source, m = vm->mask_bytes, byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
+    uint8_t src = vm->source, m = VM_MASK_BYTES(vm), byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
     if (vm->probs_at == 0) {
         return weight;
     }
     sup = img + SUPS_AT(m);
-    states = img + vm->states_at;
+    states = img + VM_STATES_AT(vm);
     probs = img + vm->probs_at;
-    for (s = 0; s < vm->num_supervisors; s++, sup += SUP_SIZE(m)) {
+    for (s = 0; s < VM_SUPERVISORS(vm); s++, sup += SUP_SIZE(m)) {
         const uint8_t *st = states + (uint16_t)vm->state[s] * STATE_SIZE(m);
         uint8_t defined = PEEK(src, st + byte);
         if ((PEEK(src, sup + byte) & bit) && (defined & bit)) {
@@ -1302,6 +1379,18 @@ SVM_COLD uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
     return 0xFFu;
 }
 
+#if FLAT_MASKS
+/* The `n`-th event (from 0) of `mask`, which has more than n. */
+static uint8_t nth_event(mask_t mask, uint8_t n)
+{
+    uint8_t event;
+    for (event = 0;; mask = (mask_t)(mask >> 1), event++) {
+        if ((mask & 1u) && n-- == 0u) {
+            return event;
+        }
+    }
+}
+#else
 /* The `n`-th event (from 0) of `mask`, which has more than n: whole bytes are counted first. */
 static uint8_t nth_event(mask_t mask, uint8_t n)
 {
@@ -1317,15 +1406,22 @@ static uint8_t nth_event(mask_t mask, uint8_t n)
     } while (n-- != 0u);
     return event;
 }
+#endif
 
 /* floor(((r >> 16) * count) / 65536) (docs/semantics.md, policy uniform) with 8 x 8-bit
  * products: with h = r >> 16 = 256 hi + lo, h * count / 65536 = (hi * count + lo * count / 256)
  * / 256, each division a floor. */
 static uint8_t uniform_index(uint32_t r, uint8_t count)
 {
+#if defined(SVM_TRUSTED_IMAGE) && !defined(__AVR__)
+    /* The same floor with one 32-bit product, where that is one instruction (the minimal
+     * profile off AVR; other builds keep their form, so their code stays as it was). */
+    return (uint8_t)(((r >> 16) * (uint32_t)count) >> 16);
+#else
     uint8_t hi = (uint8_t)(r >> 24), lo = (uint8_t)(r >> 16);
     uint16_t low_part = (uint16_t)((uint16_t)lo * count) >> 8;
     return (uint8_t)(((uint16_t)((uint16_t)hi * count) + low_part) >> 8);
+#endif
 }
 
 #if SVM_WITH_FIRST || SVM_WITH_LEARNED
@@ -1341,12 +1437,12 @@ static uint8_t has_event(const uint8_t *bytes, uint8_t e)
 static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
 {
 #if SVM_WITH_FIRST || SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
-    uint8_t policy = (uint8_t)(vm->options & SVM_POLICY_MASK), e;
+    uint8_t policy = (uint8_t)(VM_OPTIONS(vm) & SVM_POLICY_MASK), e;
 #endif
 #if SVM_WITH_FIRST || SVM_WITH_LEARNED
     uint8_t bytes[SVM_MASK_BYTES];
     if (policy == SVM_POLICY_LEARNED || policy == SVM_POLICY_FIRST) {
-        mask_store(bytes, enabled, vm->mask_bytes);
+        mask_store(bytes, enabled, VM_MASK_BYTES(vm));
     }
 #endif
 #if SVM_WITH_LEARNED
@@ -1355,7 +1451,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
             return 0xFFu;
         }
         e = vm->chooser(vm, bytes, count, vm->chooser_ctx);
-        return (e < vm->num_events && has_event(bytes, e)) ? e : 0xFFu;
+        return (e < VM_EVENTS(vm) && has_event(bytes, e)) ? e : 0xFFu;
     }
 #endif
 #if SVM_WITH_FIRST
@@ -1363,7 +1459,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
         uint8_t k;
         for (k = 0; k < vm->priority_count; k++) {
             e = vm->priority[k];
-            if (e < vm->num_events && has_event(bytes, e)) {
+            if (e < VM_EVENTS(vm) && has_event(bytes, e)) {
                 return e;
             }
         }
@@ -1405,13 +1501,40 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
     const svm_binding_t *bindings = vm->bindings;
     uint8_t cap = bindings != 0 ? vm->bindings_cap : 0u;
 #endif
+#if FLAT_MASKS
+    svm_dispatch_fn dispatch = vm->dispatch;
+    mask_t current = 0, todo = SVM_WITH_PUBLIC ? first : second, bit;
+    uint8_t pass, event;
+    for (pass = SVM_WITH_PUBLIC ? 0u : 1u; pass < 2u; pass++, todo = second) {
+        for (event = 0, bit = 1u; todo != 0u; todo = (mask_t)(todo >> 1), bit = (mask_t)(bit << 1), event++) {
+            uint8_t occurs;
+            if (!(todo & 1u)) {
+                continue;
+            }
+#if SVM_WITH_BINDINGS
+            if (event < cap && bindings[event].check != 0) {
+                occurs = bindings[event].check(bindings[event].data) != 0;
+            } else
+#endif
+            {
+                occurs = dispatch != 0 && dispatch(vm, event, SVM_OP_CHECK) != 0;
+            }
+            if (occurs) {
+                current = (mask_t)(current | bit);
+            }
+        }
+    }
+    return current;
+#else
     svm_dispatch_fn dispatch = vm->dispatch;
     uint8_t pass, i, current[SVM_MASK_BYTES];
     cursor_t c;
     for (i = 0; i < SVM_MASK_BYTES; i++) {
         current[i] = 0;
     }
-    for (pass = 0, cursor_start(&c, first); pass < 2u; pass++, cursor_start(&c, second)) {
+    /* Without the public-first pass (SVM_WITH_PUBLIC = 0) `first` is empty: one pass. */
+    for (pass = SVM_WITH_PUBLIC ? 0u : 1u, cursor_start(&c, SVM_WITH_PUBLIC ? first : second); pass < 2u;
+         pass++, cursor_start(&c, second)) {
         for (; cursor_any(&c); cursor_skip_byte(&c)) {
             uint8_t todo = cursor_byte(&c), bit = 1, event = c.base, occurred = 0;
             for (; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
@@ -1435,6 +1558,7 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
         }
     }
     return mask_load(current);
+#endif
 }
 
 /* Docs/semantics.md step 2: the events that occur among those whose check was `current`: all
@@ -1462,21 +1586,55 @@ static SVM_INLINE uint8_t control_continues(uint8_t options, mask_t occurring)
  * folds the record sizes and reads each mask in one go. */
 static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
 {
-    const uint8_t *img = vm->image;
-    uint8_t src = vm->source, options = vm->options, fired = 0, pass, count, event;
+    const uint8_t *img = VM_IMAGE(vm);
+    uint8_t src = VM_SOURCE(vm), options = VM_OPTIONS(vm), fired = 0, pass, count, event;
     mask_t valid = valid_events(vm);
     mask_t controllable = mask_and(mask_read(src, img + CONTROLLABLE_AT, m), valid);
+#if SVM_WITH_PUBLIC
     mask_t public_mask = mask_read(src, img + PUBLIC_AT(m), m);
+#else
+    const mask_t public_mask = MASK_NONE;     /* the image has no public event (svm_load_P) */
+#endif
     mask_t uncontrollable = mask_and_not(valid, controllable);
     /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
     mask_t occurring = occurrence(vm, poll(vm, mask_and(uncontrollable, public_mask),
                                            mask_and_not(uncontrollable, public_mask)), options);
+#if FLAT_MASKS
+    mask_t firing = SVM_WITH_PUBLIC ? mask_and(occurring, public_mask) : occurring;
+    /* 3. Apply inputs, public (pass 0) then private (pass 1); then the selected event (pass 2),
+     * all from this one loop (below). */
+    for (pass = SVM_WITH_PUBLIC ? 0u : 1u;; pass++) {
+        mask_t bit = 1u;
+        for (event = 0; firing != 0u; firing = (mask_t)(firing >> 1), bit = (mask_t)(bit << 1), event++) {
+            if (firing & 1u) {
+                fire(vm, event, SVM_MASK_BYTES == 1 ? 0u : (uint8_t)(event >> 3),
+                     SVM_MASK_BYTES == 1 || event < 8u ? (uint8_t)bit : (uint8_t)(bit >> 8), m);
+                fired++;
+            }
+        }
+        if (pass == 0u) {
+            firing = mask_and_not(occurring, public_mask);
+            continue;
+        }
+        if (pass == 1u && control_continues(options, occurring)) {
+            mask_t enabled = enabled_set(vm, controllable, m);
+            /* Only the learned policy's chooser may refuse (0xFF). */
+            if ((count = mask_count(enabled)) != 0u &&
+                ((event = select_event(vm, enabled, count)) != 0xFFu || !SVM_WITH_LEARNED)) {
+                firing = (mask_t)((mask_t)1u << event);
+                continue;
+            }
+        }
+        return fired;
+    }
+#else
     cursor_t firing;
     /* 3. Apply inputs: the occurring events in input order, public (pass 0) then private
      * (pass 1); then the selected event (pass 2). All fire from this one loop, so that -O3
      * inlines fire once on AVR: a second call for the control phase, a second copy, put the
      * largest model's Kilobot core over its budget (docs/footprint.md, "Cost per step"). */
-    for (pass = 0, cursor_start(&firing, mask_and(occurring, public_mask));; pass++) {
+    for (pass = SVM_WITH_PUBLIC ? 0u : 1u,
+         cursor_start(&firing, SVM_WITH_PUBLIC ? mask_and(occurring, public_mask) : occurring);; pass++) {
         for (; cursor_any(&firing); cursor_skip_byte(&firing)) {
             uint8_t todo = cursor_byte(&firing), bit = 1;
             for (event = firing.base; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
@@ -1502,6 +1660,7 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
         }
         return fired;
     }
+#endif
 }
 
 uint8_t svm_step(svm_vm_t *vm)
@@ -1510,8 +1669,8 @@ uint8_t svm_step(svm_vm_t *vm)
         return 0;
     }
 #if !SVM_MASK_EXACT
-    if (vm->mask_bytes != SVM_MASK_BYTES) {
-        return step_m(vm, MASK_WIDTH(vm->mask_bytes));
+    if (VM_MASK_BYTES(vm) != SVM_MASK_BYTES) {
+        return step_m(vm, MASK_WIDTH(VM_MASK_BYTES(vm)));
     }
 #endif
     return step_m(vm, SVM_MASK_BYTES);
@@ -1522,8 +1681,8 @@ uint8_t svm_step(svm_vm_t *vm)
  * in its file's order; only that build compiles this second caller of fire. */
 void svm_fire_event(svm_vm_t *vm, uint8_t event)
 {
-    if (vm->image != 0 && event < vm->num_events) {
-        fire(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), vm->mask_bytes);
+    if (vm->image != 0 && event < VM_EVENTS(vm)) {
+        fire(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), VM_MASK_BYTES(vm));
     }
 }
 #endif
@@ -1571,10 +1730,12 @@ uint16_t svm_num_states(const svm_vm_t *vm)
     return vm->image == 0 ? 0u : RD16(vm, SVM_AT_NUM_STATES);
 }
 
+#if SVM_WITH_VIOLATIONS
 uint32_t svm_violations(const svm_vm_t *vm)
 {
     return vm->violations;
 }
+#endif
 
 uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event)
 {

@@ -55,6 +55,19 @@
  *                         SVM_FLASH_ONLY and SVM_MASK_EXACT = 1. The limits must be the
  *                         image's exact counts (the generated Makefile's): the step uses them
  *                         as constants, and the load refuses an image of other counts.
+ *   SVM_TRUSTED_OPTIONS   the options (SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_*) fixed at
+ *                         build, e.g. -DSVM_TRUSTED_OPTIONS=0x01u for edge inputs,
+ *                         after-inputs, uniform: the step has that one path. svm_set_options
+ *                         still sets the seed; its `options` are stored but not used.
+ *                         (Any build may set it; the profile is where it pays.)
+ *   SVM_WITH_PUBLIC       0: the model has no public event, so the step has no public-first
+ *                         pass; svm_load_P refuses an image with a public event
+ *                         (SVM_ERR_LIMITS). Only with SVM_TRUSTED_IMAGE (an #error otherwise).
+ * And for any build:
+ *   SVM_WITH_VIOLATIONS   0: no violation counter and no hook (svm_violations,
+ *                         svm_set_on_violation not declared; svm_vm_t 6 bytes smaller on AVR).
+ *                         A violation still leaves the supervisor where it is, as always: only
+ *                         its count and report are gone. Default 1.
  * With the features above set to 0 and -ffunction-sections -Wl,--gc-sections this is the
  * smallest VM (benchmarks/flash_vs_published.py).
  */
@@ -121,6 +134,15 @@ extern "C" {
 #endif
 #ifndef SVM_WITH_LEARNED
 #define SVM_WITH_LEARNED 1
+#endif
+#ifndef SVM_WITH_VIOLATIONS
+#define SVM_WITH_VIOLATIONS 1
+#endif
+#ifndef SVM_WITH_PUBLIC
+#define SVM_WITH_PUBLIC 1
+#endif
+#if !SVM_WITH_PUBLIC && !defined(SVM_TRUSTED_IMAGE)
+#error "SVM_WITH_PUBLIC=0 is for the minimal profile (SVM_TRUSTED_IMAGE), whose image has no public event"
 #endif
 
 /* The image format's numbers (its limits SVM_FORMAT_MAX_*, which a build's SVM_MAX_* stay
@@ -217,8 +239,10 @@ typedef void (*svm_violation_fn)(struct svm_vm *vm, uint8_t event, uint8_t super
 /* The VM. Treat the fields as private; use the functions below. */
 typedef struct svm_vm {
     const uint8_t *image;       /* the table image (flash or RAM), NULL before a load */
-    uint16_t states_at;         /* offsets of the image's sections */
+#ifndef SVM_TRUSTED_IMAGE
+    uint16_t states_at;         /* offsets of the image's sections (the profile's are constants) */
     uint16_t targets_at;
+#endif
 #if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
     uint16_t probs_at;          /* 0 when the image has no probabilities */
 #endif
@@ -232,7 +256,9 @@ typedef struct svm_vm {
     uint8_t source;             /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
                                    (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte */
     uint8_t options;            /* SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_* */
+#if SVM_WITH_VIOLATIONS
     uint32_t violations;        /* saturates at SVM_MAX_VIOLATIONS */
+#endif
     svm_state_t state[SVM_MAX_SUPERVISORS];   /* global state numbers */
     uint8_t previous[SVM_MASK_BYTES];   /* check values of the previous step (edge mode) */
     uint32_t rng;
@@ -246,7 +272,9 @@ typedef struct svm_vm {
     svm_chooser_fn chooser;
     void *chooser_ctx;
 #endif
+#if SVM_WITH_VIOLATIONS
     svm_violation_fn on_violation;
+#endif
 #if SVM_WITH_FIRST
     const uint8_t *priority;    /* policy `first`: events to rank first, highest first */
     uint8_t *priority_by_name;  /* the same list when a swap rebinds it (svm_bind_priority) */
@@ -295,7 +323,8 @@ uint16_t svm_crc16_update(uint16_t crc, uint8_t byte);
 /* Initial states, cleared check memory and violation counter, generator re-seeded. */
 void svm_reset(svm_vm_t *vm);
 
-/* Options take effect at the next step; the seed at the next reset. */
+/* Options take effect at the next step; the seed at the next reset. A build with
+ * SVM_TRUSTED_OPTIONS steps with the build's options whatever `options` says. */
 void svm_set_options(svm_vm_t *vm, uint8_t options, uint32_t seed);
 
 /* ---- callbacks -------------------------------------------------------------------------- */
@@ -322,7 +351,9 @@ void svm_set_priority(svm_vm_t *vm, const uint8_t *events, uint8_t count);
  * image lacking one of the names is refused with SVM_ERR_NAMES; an entry that names no event
  * becomes 0xFF, never enabled). */
 void svm_bind_priority(svm_vm_t *vm, uint8_t *events, uint8_t count);
+#if SVM_WITH_VIOLATIONS
 void svm_set_on_violation(svm_vm_t *vm, svm_violation_fn hook);
+#endif
 
 /* ---- running ---------------------------------------------------------------------------- */
 
@@ -354,7 +385,9 @@ uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor);
 uint16_t svm_num_states(const svm_vm_t *vm);
+#if SVM_WITH_VIOLATIONS
 uint32_t svm_violations(const svm_vm_t *vm);
+#endif
 uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event);
 uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event);
 

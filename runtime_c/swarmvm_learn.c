@@ -397,13 +397,38 @@ uint16_t svl_policy_save(const svl_policy_t *p, uint32_t *words, uint16_t cap)
     return total;
 }
 
+/* Whether a saved word, as the int32_t it holds, lies within +-limit. */
+static int within(uint32_t word, int32_t limit)
+{
+    int32_t value = (int32_t)word;
+    return value >= -limit && value <= limit;
+}
+
+/* Whether the saved values are ones the policy can hold: a checksum that matches does not make
+ * an array this policy's (another writer, or a corruption that keeps it), and a shift of 32 or
+ * more, or a baseline or preference past its clamp, would reach an undefined shift or a signed
+ * overflow in the step (docs/proof.md, "Real defects"). */
+static int plausible(const uint32_t *words, uint16_t num_theta)
+{
+    uint16_t i;
+    if (words[3] > 0xFFFFu || words[4] > 0xFFFFu || words[5] >= 32u || !within(words[6], REWARD_LIMIT)) {
+        return 0;
+    }
+    for (i = 0; i < num_theta; i++) {
+        if (!within(words[SVL_POLICY_HEADER_WORDS + i], THETA_LIMIT)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 int svl_policy_load(svl_policy_t *p, const uint32_t *words, uint16_t count)
 {
     uint16_t i;
     if (count < SVL_POLICY_HEADER_WORDS + 1 || words[0] != SVL_POLICY_MAGIC
         || words[1] != SVL_POLICY_VERSION || words[2] != p->num_theta
         || count != SVL_POLICY_HEADER_WORDS + p->num_theta + 1
-        || words[count - 1] != crc_words(words, (uint16_t)(count - 1))) {
+        || words[count - 1] != crc_words(words, (uint16_t)(count - 1)) || !plausible(words, p->num_theta)) {
         return -1;
     }
     p->inv_temp_q8 = (uint16_t)words[3];

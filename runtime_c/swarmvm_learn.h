@@ -112,7 +112,8 @@ uint16_t svl_exp_neg_q15(uint32_t x_q16);
 /* Save as a flat array (header, theta, CRC word): returns the words written, 0 if cap is short. */
 uint16_t svl_policy_save(const svl_policy_t *p, uint32_t *words, uint16_t cap);
 
-/* Load a saved array; returns 0, or -1 on a wrong magic/version/size or checksum. */
+/* Load a saved array; returns 0, or -1 on a wrong magic/version/size or checksum, or values the
+ * policy never holds (a shift of 32 or more, a baseline or a preference past its clamp). */
 int svl_policy_load(svl_policy_t *p, const uint32_t *words, uint16_t count);
 
 #ifdef __cplusplus

@@ -27,7 +27,7 @@ uint16_t svm_logic_page_size(void)
 uint16_t svm_logic_page_length(void)
 {
     const uint8_t *page = svm_logic_page();
-    uint16_t claimed = (uint16_t)(page[SVM_AT_LENGTH] | (page[SVM_AT_LENGTH + 1u] << 8));
+    uint16_t claimed = (uint16_t)(page[SVM_AT_LENGTH] | ((uint16_t)page[SVM_AT_LENGTH + 1u] << 8));
     return claimed >= SVM_MIN_IMAGE_SIZE && claimed <= svm_logic_page_size() ? claimed : svm_logic_page_size();
 }
 

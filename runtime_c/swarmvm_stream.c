@@ -42,7 +42,7 @@ uint8_t svm_stream_feed(svm_stream_t *stream, const uint8_t chunk[SVM_CHUNK_BYTE
         }
         stream->buffer[stream->received++] = chunk[1u + i];
         if (stream->received == SVM_AT_LENGTH + 2u) {  /* the header's length field is in */
-            stream->length = (uint16_t)(stream->buffer[SVM_AT_LENGTH] | (stream->buffer[SVM_AT_LENGTH + 1u] << 8));
+            stream->length = (uint16_t)(stream->buffer[SVM_AT_LENGTH] | ((uint16_t)stream->buffer[SVM_AT_LENGTH + 1u] << 8));
             if (stream->length > stream->capacity || stream->length < SVM_MIN_IMAGE_SIZE) {
                 return abandon(stream, SVM_STREAM_TOO_LARGE);
             }

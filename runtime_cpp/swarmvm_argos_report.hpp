@@ -17,7 +17,7 @@
 #define SWARMVM_ARGOS_REPORT_HPP
 
 #include <cstdint>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,11 +29,16 @@
 
 namespace swarmvm {
 
+// An event script is read whole, as the Python app reads its own (swarmvm_app.MAX_SCRIPT_BYTES):
+// 16 MiB hold over a million steps of a few events each.
+constexpr std::size_t kMaxScriptSize = std::size_t{16} << 20;
+
 class ArgosReport {
 public:
     // Reads <report> from the controller's params (absent: nothing reported) and, with a
     // script, binds every uncontrollable check of `vm` to it. Call after the controller has
-    // bound its own checks. Throws std::runtime_error / std::invalid_argument on a bad script.
+    // bound its own checks. Throws std::runtime_error / std::invalid_argument on a bad script, FileError
+    // (a std::runtime_error, one line) when the script is not a regular file or is over kMaxScriptSize.
     void init(argos::TConfigurationNode& params, const std::string& robot_id, ArgosVM& vm) {
         id_ = robot_id;
         fired_count_.assign(vm.image().num_events, 0);
@@ -44,8 +49,7 @@ public:
         std::string path;
         argos::GetNodeAttributeOrDefault(report, "script", path, path);
         if (path.empty()) return;
-        std::ifstream in(path);
-        if (!in) throw std::runtime_error("cannot read event script " + path);
+        std::istringstream in(read_regular_file(path, kMaxScriptSize, "event script"));
         script_ = read_event_script(vm.image(), in);
         bind_script_checks(vm, row_);
         reset();

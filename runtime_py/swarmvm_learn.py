@@ -392,6 +392,11 @@ class LearnedPolicy:
         if crc16(b"".join(w.to_bytes(4, "little") for w in words[:-1])) != words[-1]:
             raise PolicyError("parameter checksum mismatch")
         signed = [w - (1 << 32) if w >> 31 else w for w in words]
+        # Values the policy never holds, refused as the C loader refuses them (svl_policy_load's
+        # plausible()): a matching checksum does not make an array this policy's.
+        if words[3] > 0xFFFF or words[4] > 0xFFFF or words[5] >= 32 or abs(signed[6]) > REWARD_LIMIT \
+                or any(abs(value) > THETA_LIMIT for value in signed[8:-1]):
+            raise PolicyError("parameter values out of the policy's range")
         self.inv_temp_q8, self.rate_q16, self.baseline_shift = words[3], words[4], words[5]
         self.baseline, self.updates = signed[6], words[7]
         self.theta = signed[8:-1]

@@ -3,9 +3,10 @@ VMs did against the supervisors they ran.
 
 Everything is decided here, when the page is written, so the browser only displays: Graphviz
 lays out each local supervisor (swarmvm.models.pictures' DOT, names already escaped there), every
-distinct vector of states is numbered once with its enabled controllable events, and each run
+distinct vector of states is numbered once with its enabled controllable events, each run
 becomes arrays of small integers (a vector number, a fired-events number and the violation
-counter per step). The page carries its own script and style (templates/inspect/, package
+counter per step), and the transitions a step takes are walked once per distinct (vector
+before, events fired) pair, every supervisor's, input by input, then the chosen event. The page carries its own script and style (templates/inspect/, package
 data) and a Content-Security-Policy that allows no fetch at all: it opens from ``file://``
 offline, and the same inputs give the same bytes.
 
@@ -25,7 +26,7 @@ from ..compiler.model import Model
 from ..compiler.runtime_files import TEMPLATES
 from ..models.pictures import dot_to_svg, supervisor_dot
 from ..models.product import Conjunction, events_of
-from .trace import Run, first_difference, read_trace
+from .trace import Difference, Run, compare_traces, first_difference, read_trace
 
 ROBOT_STEPS = 1_000_000
 ASSETS = ("inspect.css", "inspect.js")
@@ -61,29 +62,58 @@ class _Numbering:
         return [list(v) for v in self.numbers]
 
 
-def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool) -> dict[str, object]:
-    """Everything the page's script displays, as JSON-ready lists of integers and names."""
+def _moves(model: Model, before: tuple[int, ...], fired: tuple[int, ...]) -> list[list[int]]:
+    """The transitions the events ``fired`` in one step take from the states ``before``, in firing
+    order (docs/semantics.md, steps 3 and 6): [supervisor, from, to, event] for every supervisor
+    holding the event that has a transition on it (one without keeps its state: a violation)."""
+    states, moves = list(before), []
+    for event in fired:
+        for sup, supervisor in enumerate(model.supervisors):
+            if event not in supervisor.alphabet:
+                continue
+            target = next((t for e, t, _ in supervisor.states[states[sup]] if e == event), None)
+            if target is not None:
+                moves.append([sup, states[sup], target, event])
+                states[sup] = target
+    return moves
+
+
+def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool,
+              difference: Difference | None = None) -> dict[str, object]:
+    """Everything the page's script displays, as JSON-ready lists of integers and names.
+    ``difference``: where the whole runs compared differ (:func:`compare_traces`); without it,
+    it is looked for in the steps the runs keep."""
     vectors, fired_sets = _Numbering(), _Numbering()
     fired_sets(())
     vectors(tuple(0 for _ in model.supervisors))
     runs_data = []
+    # A step's transitions, by "vector before,fired set" (the same pair: the same transitions).
+    moves: dict[str, list[list[int]]] = {}
     for run in runs:
+        v = [vectors(run.start)] + [vectors(s) for s in run.states]
+        f = [0] + [fired_sets(fired) for fired in run.fired]
+        for i, fired in enumerate(run.fired, 1):
+            key = "%d,%d" % (v[i - 1], f[i])
+            if fired and key not in moves:
+                moves[key] = _moves(model, run.states[i - 2] if i > 1 else run.start, fired)
         runs_data.append(dict(name=run.name, steps=run.steps, counts=run.counts, lastViolations=run.last_violations,
-                              last=vectors(run.last),
-                              v=[vectors(run.start)] + [vectors(s) for s in run.states],
-                              f=[0] + [fired_sets(f) for f in run.fired],
-                              x=[run.start_violations] + run.violations))
+                              last=vectors(run.last), v=v, f=f, x=[run.start_violations] + run.violations))
     conjunction = Conjunction.of(model)
     controllable = sum(1 << e for e, c in enumerate(model.controllable) if c)
     vector_list = vectors.values()
-    difference = first_difference(runs[0], runs[1]) if compare else None
+    if compare and difference is None:
+        first = first_difference(runs[0], runs[1])
+        difference = Difference(first, int(first is not None), first)
     return dict(title=title, first=runs[0].first if runs else 1, window=window(len(runs)), robotSteps=ROBOT_STEPS,
                 events=[[name, "c" if c else "u", int(p)]
                         for name, c, p in zip(model.events, model.controllable, model.public)],
                 supervisors=[len(sup.states) for sup in model.supervisors],
                 vectors=vector_list,
                 enabled=[list(events_of(conjunction.enabled(tuple(v)) & controllable)) for v in vector_list],
-                fired=fired_sets.values(), runs=runs_data, compare=compare, difference=difference)
+                fired=fired_sets.values(), moves=moves, runs=runs_data, compare=compare,
+                difference=difference.first if difference else None,
+                differences=difference.steps if difference else 0,
+                differenceShown=difference.shown if difference else None)
 
 
 def asset(name: str) -> str:
@@ -100,8 +130,9 @@ def _drawings(model: Model, title: str) -> str:
     return "\n".join(figures)
 
 
-def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool) -> bytes:
-    """The whole page, as UTF-8 bytes."""
+def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool,
+              difference: Difference | None = None) -> bytes:
+    """The whole page, as UTF-8 bytes (``difference``: :func:`page_data`)."""
     head = ('<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
             '<meta http-equiv="Content-Security-Policy" content="%s">\n'
             '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
@@ -109,7 +140,7 @@ def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool) -> b
             % (_CSP, html(title), asset("inspect.css")))
     body = (BODY % dict(title=html(title), drawings=_drawings(model, title))
             + '<script id="data" type="application/json">%s</script>\n<script>\n%s</script>\n</body>\n</html>\n'
-            % (script_json(page_data(model, title, runs, compare)), asset("inspect.js")))
+            % (script_json(page_data(model, title, runs, compare, difference)), asset("inspect.js")))
     return (head + body).encode("utf-8")
 
 
@@ -142,6 +173,7 @@ BODY = """<body>
 <button id="nextEvent" title="next occurrence of the event (e)">next event</button>
 <button id="nextViolation" title="next violation (v)">next violation</button>
 <button id="difference" title="first difference (d)" hidden>first difference</button>
+<span id="status" role="status"></span>
 </nav>
 <details id="keys"><summary>Keyboard</summary>
 <table>
@@ -149,9 +181,9 @@ BODY = """<body>
 <tr><td><kbd>Home</kbd> <kbd>End</kbd></td><td>first / last step</td></tr>
 <tr><td><kbd>Space</kbd></td><td>play / pause</td></tr>
 <tr><td><kbd>+</kbd> <kbd>-</kbd></td><td>faster / slower</td></tr>
-<tr><td><kbd>e</kbd> <kbd>E</kbd></td><td>next / previous step where the chosen event fired</td></tr>
-<tr><td><kbd>v</kbd> <kbd>V</kbd></td><td>next / previous violation</td></tr>
-<tr><td><kbd>d</kbd></td><td>first difference of the two runs compared</td></tr>
+<tr><td><kbd>e</kbd> <kbd>E</kbd></td><td>next / previous step where the chosen event fired (in the robot shown while it has one)</td></tr>
+<tr><td><kbd>v</kbd> <kbd>V</kbd></td><td>next / previous violation (likewise)</td></tr>
+<tr><td><kbd>d</kbd></td><td>first difference of the two runs compared, among the steps kept</td></tr>
 <tr><td><kbd>&#x2191;</kbd> <kbd>&#x2193;</kbd></td><td>previous / next robot</td></tr>
 </table>
 </details>
@@ -178,7 +210,11 @@ def write_page(model: Model, title: str, traces: Sequence[str], output: str, com
                first_step: int) -> Inspection:
     """Read every trace (InputError at the first bad line, before anything is written), then
     write the page to ``output`` atomically."""
-    runs = [read_trace(path, model, first_step, window(len(traces))) for path in traces]
+    difference = None
+    if compare and len(traces) == 2:
+        runs, difference = compare_traces((traces[0], traces[1]), model, first_step, window(len(traces)))
+    else:
+        runs = [read_trace(path, model, first_step, window(len(traces))) for path in traces]
     target = Path(output).absolute()
-    written = write_outputs(target.parent, {target.name: (page_html(model, title, runs, compare), False)})
+    written = write_outputs(target.parent, {target.name: (page_html(model, title, runs, compare, difference), False)})
     return Inspection(written[0], sum(len(r.fired) for r in runs), sum(max(0, r.steps - r.first + 1) for r in runs))

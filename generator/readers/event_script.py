@@ -4,9 +4,11 @@ A script says, for each step, which uncontrollable events' checks return true. A
 line per step listing ``EV_`` names separated by spaces, or ``-`` for none; ``#`` starts a
 comment line."""
 
+import io
 import random
 import sys
-from typing import Iterable, Iterator, Sequence
+from itertools import chain
+from typing import BinaryIO, Iterable, Iterator, Sequence
 
 from ..boundary.errors import MAX_BYTES, InputError, decode_text, open_input
 from ..compiler.tables import Tables
@@ -44,44 +46,60 @@ def parse_script(path: str, text: str, names: Sequence[str], controllable: int) 
     return list(parse_lines(path, text.splitlines(), names, controllable))
 
 
+def handle_lines(name: str, handle: BinaryIO, first: int = 1) -> Iterator[str]:
+    """The lines of an open binary handle, decoded one at a time and numbered from ``first``
+    (InputError naming ``name`` for a line that is not UTF-8 or longer than MAX_LINE_BYTES)."""
+    for number, raw in enumerate(iter(lambda: handle.readline(MAX_LINE_BYTES + 1), b""), first):
+        if len(raw) > MAX_LINE_BYTES:
+            raise InputError(name, "line %d" % number, "line over the %d-byte limit" % MAX_LINE_BYTES)
+        yield decode_text(name, raw, "line %d" % number, " of the line")
+
+
 def file_lines(path: str) -> Iterator[str]:
-    """The lines of a regular file, decoded one at a time (InputError for a line that is not
-    UTF-8 or longer than MAX_LINE_BYTES)."""
+    """The lines of a regular file, decoded one at a time (:func:`handle_lines`)."""
     try:
         with open_input(path) as handle:
-            number = 0
-            while True:
-                raw = handle.readline(MAX_LINE_BYTES + 1)
-                if not raw:
-                    return
-                number += 1
-                if len(raw) > MAX_LINE_BYTES:
-                    raise InputError(path, "line %d" % number, "line over the %d-byte limit" % MAX_LINE_BYTES)
-                yield decode_text(path, raw, "line %d" % number, " of the line")
+            yield from handle_lines(path, handle)
     except OSError as exc:
         raise InputError(path, "", "cannot read file (%s)" % exc.strerror)
 
 
-def _stdin_bytes() -> bytes:
-    """Standard input's bytes, refused past errors.MAX_BYTES as a pipe given by name is."""
-    data = sys.stdin.buffer.read(MAX_BYTES + 1)
-    if len(data) > MAX_BYTES:
-        raise InputError(STDIN_NAME, "", "over the %d-byte limit" % MAX_BYTES)
-    return data
+def _counted(path: str, rows: Iterator[Row]) -> Iterator[Row]:
+    """``rows``, refused (InputError) at the step past MAX_STEPS."""
+    for steps, row in enumerate(rows, 1):
+        if steps > MAX_STEPS:
+            raise InputError(path, "", "script of over %d steps" % MAX_STEPS)
+        yield row
+
+
+def _stdin_rows(names: Sequence[str], controllable: int) -> Iterator[Row]:
+    """Standard input's rows, streamed as a file's are, whatever its length: the first
+    errors.MAX_BYTES (and the line they end in) are held and checked before any row, as a file is
+    checked whole, so a short script's bad line raises before the first row; past them a bad line
+    raises when it is reached. What is held stays within MAX_BYTES."""
+    stdin = sys.stdin.buffer
+    held, count = bytearray(), 0
+    while len(held) < MAX_BYTES:
+        raw = stdin.readline(MAX_LINE_BYTES + 1)
+        if not raw:
+            break
+        held += raw
+        count += 1
+    for _ in parse_lines(STDIN_NAME, handle_lines(STDIN_NAME, io.BytesIO(held)), names, controllable):
+        pass
+    lines = chain(handle_lines(STDIN_NAME, io.BytesIO(held)), handle_lines(STDIN_NAME, stdin, count + 1))
+    return _counted(STDIN_NAME, parse_lines(STDIN_NAME, lines, names, controllable))
 
 
 def read_script_rows(path: str, names: Sequence[str], controllable: int) -> Iterator[Row]:
-    """A script file's rows, to iterate once, in constant memory: the file (a regular file, as
-    every input: :func:`~swarmvm.boundary.errors.open_input`) is read twice, line by line, first
-    to refuse bad input (InputError, before any row) and MAX_STEPS or more steps, then for the
-    rows; :data:`STDIN` reads standard input whole, within errors.MAX_BYTES, once."""
+    """A script's rows, to iterate once, in constant memory: a file (a regular file, as every
+    input: :func:`~swarmvm.boundary.errors.open_input`) is read twice, line by line, first to
+    refuse bad input (InputError, before any row) and MAX_STEPS or more steps, then for the rows;
+    :data:`STDIN`, standard input, is streamed (:func:`_stdin_rows`)."""
     if path == STDIN:
-        return iter(parse_script(STDIN_NAME, decode_text(STDIN_NAME, _stdin_bytes()), names, controllable))
-    steps = 0
-    for _ in parse_lines(path, file_lines(path), names, controllable):
-        steps += 1
-        if steps > MAX_STEPS:
-            raise InputError(path, "", "script of over %d steps" % MAX_STEPS)
+        return _stdin_rows(names, controllable)
+    for _ in _counted(path, parse_lines(path, file_lines(path), names, controllable)):
+        pass
     return parse_lines(path, file_lines(path), names, controllable)
 
 

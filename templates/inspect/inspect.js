@@ -22,6 +22,12 @@
     if (event === "violation") return run.x[i] > run.x[i - 1];
     return event < 0 ? D.fired[run.f[i]].length > 0 : !!firedHas[run.f[i]][event];
   }
+  // The transitions taken in step i of run (every supervisor's, input by input, then the chosen
+  // event's): [supervisor, from, to, event], as page.py walked them.
+  function movesOf(run, i) {
+    if (!run || i < 1 || i >= run.v.length) return [];
+    return D.moves[run.v[i - 1] + "," + run.f[i]] || [];
+  }
   function el(tag, text, cls) {
     var e = document.createElement(tag);
     if (text !== undefined) e.textContent = text;
@@ -82,12 +88,18 @@
         here.push(String(q));
       });
       f.where.textContent = runs.length ? "state " + here.join(" / ") : "initial state 0";
-      var run = runs[view.robot], names = {};
-      var fired = run && view.i > 0 && view.i < run.v.length ? D.fired[run.f[view.i]] : [];
-      fired.forEach(function (e) { names[events[e][0]] = true; });
-      var before = run && view.i > 0 ? vectorOf(run, view.i - 1)[s] : -1, after = run ? vectorOf(run, view.i)[s] : -1;
+      var marks = {};                         // "from,to,event name" -> [run shown first?, second?]
+      shown.forEach(function (k, n) {
+        movesOf(runs[k], view.i).forEach(function (m) {
+          if (m[0] !== s) return;
+          var key = m[1] + "," + m[2] + "," + events[m[3]][0];
+          (marks[key] = marks[key] || [false, false])[n] = true;
+        });
+      });
       f.edges.forEach(function (e) {
-        e.g.classList.toggle("fired", e.from === before && e.to === after && names[e.name] === true);
+        var mark = marks[e.from + "," + e.to + "," + e.name] || [false, false];
+        e.g.classList.toggle("fired", mark[0]);
+        e.g.classList.toggle("fired-b", mark[1]);
       });
     });
   }
@@ -206,17 +218,29 @@
     });
   }
 
-  function go(i) { view.i = Math.max(0, Math.min(last, i)); render(); }
+  function go(i) { view.i = Math.max(0, Math.min(last, i)); $("status").textContent = ""; render(); }
   function robot(k) { if (runs.length) { view.robot = (k + runs.length) % runs.length; render(); } }
-  function seek(what, direction) {      // the nearest step in direction where what occurred in some run
-    var order = [view.robot].concat(runs.map(function (_, k) { return k; }).filter(function (k) {
-      return k !== view.robot;
-    }));
-    for (var i = view.i + direction; i >= 1 && i <= last; i += direction) {
-      for (var n = 0; n < order.length; n++) {
-        if (occurred(runs[order[n]], i, what)) { view.robot = order[n]; go(i); return true; }
+  function seek(what, direction) {
+    // The robot shown's next (direction 1) or previous (-1) step where what occurred; when it has
+    // none, the nearest such step of another robot (the first in lane order at that step); when
+    // no robot has one, the view stays and #status says so.
+    var name = what === "violation" ? "violation" : what < 0 ? "event" : "EV_" + events[what][0];
+    var which = (direction > 0 ? "next " : "previous ") + name, i, k, shown = runs[view.robot];
+    if (!shown) return false;
+    for (i = view.i + direction; i >= 1 && i <= last; i += direction) {
+      if (occurred(shown, i, what)) { go(i); return true; }
+    }
+    for (i = view.i + direction; i >= 1 && i <= last; i += direction) {
+      for (k = 0; k < runs.length; k++) {
+        if (k !== view.robot && occurred(runs[k], i, what)) {
+          view.robot = k;
+          go(i);
+          $("status").textContent = "no " + which + " in " + shown.name + ": " + runs[k].name + "'s shown";
+          return true;
+        }
       }
     }
+    $("status").textContent = "no " + which + (runs.length > 1 ? " in any robot" : "");
     return false;
   }
   function play() {
@@ -233,7 +257,10 @@
     select.selectedIndex = Math.max(0, Math.min(select.options.length - 1, select.selectedIndex + direction));
     if (view.timer) { play(); play(); }
   }
-  function difference() { if (D.difference !== null) go(D.difference - D.first + 1); }
+  function difference() {      // the first difference among the steps kept (the summary says where the runs' is)
+    if (D.differenceShown !== null) go(D.differenceShown - D.first + 1);
+    else if (D.difference !== null) $("status").textContent = "no difference in the steps shown";
+  }
 
   // The static parts: summary, event list, lanes' names, whole runs.
   var total = runs.reduce(function (n, r) { return n + r.steps; }, 0);
@@ -245,8 +272,16 @@
       "; write another with --first-step for the rest)";
   }
   if (D.compare) {
-    summary += D.difference === null ? "; the two runs are identical" : "; the runs first differ at step " +
-      D.difference;
+    if (D.difference === null) summary += "; the two runs are identical";
+    else {
+      summary += "; the runs first differ at step " + D.difference + " (" + D.differences + " of " +
+        Math.max(runs[0].steps, runs[1].steps) + " steps differ)";
+      if (D.differenceShown === null) summary += ", none of the steps shown";
+      else if (D.differenceShown !== D.difference) summary += ", first in the steps shown at " + D.differenceShown;
+      if (D.difference < D.first || D.difference > stepNumber(last)) {
+        summary += " (--first-step " + D.difference + " shows step " + D.difference + ")";
+      }
+    }
     $("difference").hidden = false;
   }
   $("summary").textContent = summary;

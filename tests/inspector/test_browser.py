@@ -171,3 +171,92 @@ def test_names_holding_script_tags_show_as_text(browser, tmp_path):
     assert driver.find_element("css selector", "h1").text == name
     assert driver.find_element("css selector", "#laneNames span").text == trace.name
     assert driver.execute_script("return document.title") == name + ": swarmvm inspect"
+
+
+FIRED = """return Array.from(document.querySelectorAll('figure.sup')).map(function (f) {
+  return Array.from(f.querySelectorAll('g.edge.%s')).map(function (g) {
+    return g.querySelector('title').textContent + ' ' + g.querySelector('text').textContent; }).sort(); });"""
+
+
+def taken(model, before, events):
+    """Per supervisor, the drawn edges ("qA->qB name") the events of one step take from ``before``."""
+    states, edges = list(before), [set() for _ in model.supervisors]
+    for name in events:
+        event = model.events.index(name[3:])
+        for s, sup in enumerate(model.supervisors):
+            targets = [t for e, t, _ in sup.states[states[s]] if e == event]
+            if event in sup.alphabet and targets:
+                edges[s].add("q%d->q%d %s" % (states[s], targets[0], name[3:]))
+                states[s] = targets[0]
+    return [sorted(e) for e in edges]
+
+
+def test_every_transition_taken_is_drawn_for_both_runs(browser, tmp_path, monkeypatch):
+    """Two runs of the bundled example compared on a page whose window starts after their first difference:
+    the summary still says where they first differ; at a step where a supervisor takes an input and
+    then the chosen event, both its transitions are drawn thick, and the second run's too."""
+    from swarmvm.inspector import page as inspect_page
+    from selenium.webdriver.common.keys import Keys
+    monkeypatch.setattr(inspect_page, "ROBOT_STEPS", 40)            # 2 traces: steps 11 to 30 kept
+    a, b = (write_trace(tmp_path, EXAMPLE, 30, seed, "seed%d.trace" % seed, density=0.4) for seed in (1, 2))
+    api.inspect(str(EXAMPLE), [str(a), str(b)], str(tmp_path / "p.html"), compare=True, first_step=11)
+    model = api.compile_model([str(EXAMPLE)]).model
+    rows_a, rows_b = trace_lines(a), trace_lines(b)
+    first = next(n for n, (x, y) in enumerate(zip(rows_a, rows_b), 1) if x != y)
+    assert first < 11
+    browser.open(tmp_path / "p.html")
+    summary = browser.driver.find_element("id", "summary").text
+    assert "identical" not in summary and "first differ at step %d" % first in summary
+    twice = [n for n in range(12, 31) if any(len(edges) > 1 for edges in taken(model, rows_a[n - 2][2], rows_a[n - 1][1]))]
+    at = twice[0]
+    press(browser, *[Keys.ARROW_RIGHT] * (at - 10))
+    assert step(browser) == at
+    script = browser.driver.execute_script
+    assert script(FIRED % "fired") == taken(model, rows_a[at - 2][2], rows_a[at - 1][1])
+    assert script(FIRED % "fired-b") == taken(model, rows_b[at - 2][2], rows_b[at - 1][1])
+    assert any(script(FIRED % "fired-b"))
+    screenshot(browser, "transitions-taken.png")
+
+
+def test_next_event_and_violation_stay_on_the_robot_shown(browser, tmp_path):
+    """robot a has violations at steps 3 and 8, robot b at 5 and 10: from a, v goes to 3 then 8 on
+    a (not to b's 5), then, a having none later, to b's 10; V from there stays on b (5), then goes
+    back to a (3); past the last of all, v stays and says there is none. EV_flip: a at 2 and 9,
+    b at 4: e goes to a's 2 and 9, then, none later in any robot, stays."""
+    from selenium.webdriver.support.ui import Select
+
+    def trace(name, violated, flips):
+        count, lines = 0, []
+        for n in range(1, 13):
+            count += n in violated
+            lines.append("%d %s 0,0 %d\n" % (n, "EV_flip" if n in flips else "-", count))
+        (tmp_path / name).write_text("".join(lines))
+        return str(tmp_path / name)
+
+    traces = [trace("a.trace", (3, 8), (2, 9)), trace("b.trace", (5, 10), (4,))]
+    api.inspect(str(FLIPFLOP), traces, str(tmp_path / "p.html"))
+    browser.open(tmp_path / "p.html")
+
+    def robot():
+        return int(browser.driver.execute_script("return document.body.dataset.robot"))
+
+    def status():
+        return browser.driver.find_element("id", "status").text
+
+    seen = []
+    for key in "vvvVV":
+        press(browser, key)
+        seen.append((robot(), step(browser)))
+    assert seen == [(0, 3), (0, 8), (1, 10), (1, 5), (0, 3)]
+    assert status() == "no previous violation in b.trace: a.trace's shown"
+    press(browser, "v", "v")                                    # a's 8, then b's 10 (a has none later)
+    assert (robot(), step(browser)) == (1, 10) and status() == "no next violation in a.trace: b.trace's shown"
+    press(browser, "v")
+    assert (robot(), step(browser)) == (1, 10) and status() == "no next violation in any robot"
+    Select(browser.driver.find_element("id", "event")).select_by_visible_text("EV_flip (uncontrollable)")
+    press(browser, "\ue011", "\ue013")                          # Home, Up: robot a at the reset
+    seen = []
+    for key in "eee":
+        press(browser, key)
+        seen.append((robot(), step(browser)))
+    assert seen == [(0, 2), (0, 9), (0, 9)] and status() == "no next EV_flip in any robot"

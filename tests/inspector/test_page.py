@@ -15,6 +15,7 @@ from swarmvm import api
 from swarmvm.inspector import page as inspect_page
 from swarmvm.boundary.escape import script_json
 from swarmvm.inspector.page import ASSETS
+from swarmvm.inspector.trace import compare_traces
 
 
 class _Parts(HTMLParser):
@@ -176,3 +177,63 @@ def test_the_command_says_where_the_next_page_starts(tmp_path, monkeypatch):
     assert result.exit_code == 0, result.output
     assert result.output.splitlines()[0] == str(tmp_path / "p.html")
     assert "30 of 50 robot-steps kept in full" in result.output and "--first-step 31" in result.output
+
+
+def _walk(model, before, fired):
+    """The transitions events ``fired`` take from ``before``, found from the model's tables."""
+    states, taken = list(before), []
+    for event in fired:
+        for s, sup in enumerate(model.supervisors):
+            targets = [t for e, t, _ in sup.states[states[s]] if e == event]
+            if event in sup.alphabet and targets:
+                taken.append([s, states[s], targets[0], event])
+                states[s] = targets[0]
+    return taken, states
+
+
+@pytest.mark.parametrize("supervisor", [EXAMPLE, FLIPFLOP, NETWORK_WORKER], ids=lambda p: p.stem)
+def test_every_transition_taken_in_a_step_is_on_the_page(supervisor, tmp_path):
+    """Inputs, then the chosen event: a supervisor that moves twice in a step has both transitions
+    marked (state before -> after the input -> after the chosen event), and so has the second run."""
+    traces = [write_trace(tmp_path, supervisor, 60, seed, "r%d.trace" % seed, density=0.4) for seed in (7, 8)]
+    model = api.compile_model([str(supervisor)]).model
+    runs, difference = compare_traces((str(traces[0]), str(traces[1])), model, 1, 60)
+    data = json.loads(script_json(inspect_page.page_data(model, "t", runs, True, difference)))   # without drawings
+    twice = 0
+    for trace, run in zip(traces, data["runs"]):
+        before = [0] * len(model.supervisors)
+        for step, events, states, _violations in trace_lines(trace):
+            moves = data["moves"].get("%d,%d" % (run["v"][step - 1], run["f"][step]), [])
+            fired = [model.events.index(e[3:]) for e in events]
+            taken, after = _walk(model, before, fired)
+            assert moves == taken and after == states, step
+            for s in range(len(model.supervisors)):       # a chain from the state before to the state after
+                chain = [m for m in moves if m[0] == s]
+                assert [m[1] for m in chain] == ([before[s]] + [m[2] for m in chain])[:len(chain)]
+                twice += len(chain) > 1
+            before = states
+    assert twice            # the case a straight before -> after edge missed
+
+
+def test_the_first_difference_is_looked_for_over_the_whole_runs(tmp_path, monkeypatch):
+    """With --first-step past it, the first difference is still found (and the steps that differ
+    counted), and the page knows the first difference among the steps it keeps."""
+    monkeypatch.setattr(inspect_page, "ROBOT_STEPS", 40)            # 2 traces: 20 steps each per page
+    a = write_trace(tmp_path, FLIPFLOP, 50, 1, "a.trace")
+    rows = a.read_text().splitlines()
+    changed = [line if n not in (5, 30) else line.rsplit(" ", 1)[0] + " 999" for n, line in enumerate(rows, 1)]
+    (tmp_path / "b.trace").write_text("".join(line + "\n" for line in changed[:45]))
+    traces = [str(a), str(tmp_path / "b.trace")]
+    for first_step, shown in ((1, 5), (21, 30), (41, 46)):
+        api.inspect(str(FLIPFLOP), traces, str(tmp_path / "p.html"), compare=True, first_step=first_step)
+        data = data_of((tmp_path / "p.html").read_bytes())
+        assert (data["difference"], data["differences"], data["differenceShown"]) == (5, 2 + 5, shown), first_step
+    (tmp_path / "c.trace").write_text("".join(line + "\n" for line in changed[:29]))   # differs at 5, then ends
+    api.inspect(str(FLIPFLOP), [str(a), str(tmp_path / "c.trace")], str(tmp_path / "p.html"), compare=True,
+                first_step=21)
+    data = data_of((tmp_path / "p.html").read_bytes())
+    assert (data["difference"], data["differences"], data["differenceShown"]) == (5, 1 + 21, 30)
+    b = write_trace(tmp_path, FLIPFLOP, 50, 1, "same.trace")
+    api.inspect(str(FLIPFLOP), [str(a), str(b)], str(tmp_path / "p.html"), compare=True, first_step=41)
+    data = data_of((tmp_path / "p.html").read_bytes())
+    assert (data["difference"], data["differences"], data["differenceShown"]) == (None, 0, None)

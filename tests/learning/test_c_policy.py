@@ -8,6 +8,7 @@ import pytest
 
 import learnbuild
 from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm_format import crc16
 from swarmvm_learn import LearnedPolicy, PolicyError, q16
 from swarmvm_vm import VM, Image
 
@@ -153,3 +154,57 @@ def test_saved_parameters_refuse_another_supervisor_and_corruption(tmp_path):
     words[9] ^= 1
     with pytest.raises(PolicyError):
         copy.from_words(words)
+
+
+def _resealed(words):
+    """``words`` with its checksum made right again: what another writer, or a corruption that
+    keeps the checksum, hands the loader."""
+    words = list(words)
+    words[-1] = crc16(b"".join((w & 0xFFFFFFFF).to_bytes(4, "little") for w in words[:-1]))
+    return words
+
+
+def _edited(words, index, value):
+    words = list(words)
+    words[index] = value & 0xFFFFFFFF
+    return _resealed(words)
+
+
+def test_saved_values_the_policy_never_holds_are_refused_by_both_loaders(tmp_path):
+    """A checksum that matches does not make an array the policy's: a baseline shift of 32 or
+    more (an undefined shift in the step), a baseline or a preference past its clamp (a signed
+    overflow), rates wider than their 16 bits are refused by svl_policy_load and
+    LearnedPolicy.from_words alike; the policy's own save is accepted (docs/proof.md)."""
+    image = Image.parse(compile_inputs([str(FORAGER)]).image)
+    policy = LearnedPolicy(image)
+    saved = policy.to_words()
+    limit, reward = 32 << 16, 1 << 24
+    cases = {"own": (saved, True), "shift 31": (_edited(saved, 5, 31), True),
+             "shift 32": (_edited(saved, 5, 32), False), "shift 40": (_edited(saved, 5, 40), False),
+             "baseline at its clamp": (_edited(saved, 6, -reward), True),
+             "baseline past it": (_edited(saved, 6, reward + 1), False),
+             "baseline INT32_MIN": (_edited(saved, 6, -(1 << 31)), False),
+             "preference at its clamp": (_edited(saved, 8, limit), True),
+             "preference past it": (_edited(saved, 8, limit + 1), False),
+             "last preference INT32_MAX": (_edited(saved, len(saved) - 2, (1 << 31) - 1), False),
+             "rate of 17 bits": (_edited(saved, 4, 1 << 16), False)}
+    for name, (words, accepted) in cases.items():
+        try:
+            LearnedPolicy(image).from_words(words)
+            python = True
+        except PolicyError:
+            python = False
+        assert python == accepted, name
+    raw = compile_inputs([str(FORAGER)]).image
+    lines = ["#define LOAD_CASES %d" % len(cases), "#define LOAD_WORDS %d" % len(saved),
+             "#define LOAD_THETA %d" % len(policy.theta),
+             "static const uint8_t load_image[%d] = {%s};" % (len(raw), ", ".join(map(str, raw))),
+             "static const uint32_t load_words[LOAD_CASES][LOAD_WORDS] = {"]
+    lines += ["    {%s}," % ", ".join("%dUL" % w for w in words) for words, _ in cases.values()]
+    (tmp_path / "policy_load_data.h").write_text("\n".join(lines + ["};", ""]))
+    exe = learnbuild.build_host(tmp_path / "policy_load", [learnbuild.RUNTIME_C / "swarmvm.c",
+                                learnbuild.RUNTIME_C / "swarmvm_learn.c", learnbuild.PROBES / "policy_load_probe.c"],
+                                includes=[tmp_path])
+    answers = learnbuild.parse_lines(learnbuild.run_host(exe), ["L%02x" % k for k in range(len(cases))])
+    for k, (name, (_, accepted)) in enumerate(cases.items()):
+        assert answers["L%02x" % k] == ("00" if accepted else "ff"), name

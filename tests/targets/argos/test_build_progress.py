@@ -41,7 +41,11 @@ def environment(tmp_path):
 
 
 def test_argos_sh_reports_the_stages_and_the_per_cent(tmp_path):
-    result = subprocess.run([str(ARGOS_SH)], capture_output=True, text=True, env=environment(tmp_path))
+    env = environment(tmp_path)
+    result = subprocess.run([str(ARGOS_SH)], capture_output=True, text=True, env=env)
+    # The jobs nproc gives in that environment (it honours OMP_NUM_THREADS, which a study's
+    # worker may have set in this process), as argos.sh asks it.
+    jobs = int(subprocess.run(["nproc"], capture_output=True, text=True, env=env, check=True).stdout)
     prefix = tmp_path / "swarmvm" / "argos3-fake"
     log = tmp_path / "swarmvm" / "argos3-fake.build.log"
     assert (result.returncode, result.stdout) == (0, "%s\n" % prefix), result.stderr
@@ -51,7 +55,7 @@ def test_argos_sh_reports_the_stages_and_the_per_cent(tmp_path):
     assert said[0].endswith("full output: %s" % log)
     stages = [line for line in said if not line.startswith("argos.sh: compiling ARGoS: ")]
     assert stages[1:] == ["argos.sh: unpacking the source", "argos.sh: configuring (cmake)",
-                          "argos.sh: compiling (make -j%d)" % os.cpu_count(), "argos.sh: installing",
+                          "argos.sh: compiling (make -j%d)" % jobs, "argos.sh: installing",
                           "argos.sh: built; installed in %s" % prefix]
     per_cent = [int(m.group(1)) for m in map(re.compile(r"argos.sh: compiling ARGoS: (\d+)%$").match, said) if m]
     assert len(per_cent) >= 3 and per_cent[-1] == 100

@@ -1,0 +1,63 @@
+"""`make prove`'s comparison (tests/proof/prove.py, docs/proof.md): Eva on one configuration reports
+exactly the alarms tests/proof/alarms.txt lists for it, and a planted defect (the harness built
+with PROOF_PLANT: a read one byte past the image buffer) is a new alarm that fails the run; a
+listed alarm Eva no longer reports fails it too.
+
+Without frama-c the Eva tests skip, saying how to get it; under CI=true they fail instead."""
+
+import collections
+import os
+
+import pytest
+
+from proof import prove
+
+CONFIG = "kilobot"      # the quickest configuration (docs/proof.md, "How to run")
+
+
+@pytest.fixture(scope="module")
+def frama_c():
+    if prove.frama_c() is None and os.environ.get("CI") != "true":
+        pytest.skip("frama-c not found: scripts/setup.sh installs frama-c-base (apt-get install frama-c-base)")
+    assert prove.frama_c() is not None, "frama-c not found, and CI=true: scripts/setup.sh installs frama-c-base"
+    return prove.frama_c()
+
+
+@pytest.mark.slow
+def test_one_configuration_matches_the_list(frama_c, tmp_path, capsys):
+    assert prove.main(["--config", CONFIG, "--work", str(tmp_path)]) == 0, capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_a_planted_out_of_bounds_read_fails_the_comparison(frama_c, tmp_path, capsys):
+    status = prove.main(["--config", CONFIG, "--work", str(tmp_path), "-D", "PROOF_PLANT=1"])
+    out = capsys.readouterr().out
+    assert status == 1, out
+    new = [line for line in out.splitlines() if line.startswith("prove: new alarm")]
+    assert new and all("harness_core.c | main |" in line for line in new), out
+    assert any("| index_bound |" in line and "< 512" in line for line in new), out
+
+
+def test_a_gone_alarm_fails_and_so_does_a_new_one(tmp_path):
+    alarm = (CONFIG, "swarmvm.c", "fire", "mem_access", "Unknown", r"\valid_read(st + 0)")
+    listed = tmp_path / "alarms.txt"
+    listed.write_text("# a comment\n" + " | ".join(alarm) + " | imprecision: an example\n")
+    counts, why = prove.read_list(listed)
+    assert counts == collections.Counter([alarm]) and why[alarm] == "imprecision: an example"
+    assert prove.compare(collections.Counter([alarm]), counts) == []
+    gone = prove.compare(collections.Counter(), counts)
+    assert len(gone) == 1 and gone[0].startswith("gone")
+    twice = prove.compare(collections.Counter({alarm: 2}), counts)
+    assert len(twice) == 1 and twice[0].startswith("new alarm (1 x)")
+
+
+def test_a_line_without_a_classification_is_refused(tmp_path):
+    listed = tmp_path / "alarms.txt"
+    listed.write_text("host | swarmvm.c | fire | mem_access | Unknown | \\valid_read(p) | maybe\n")
+    with pytest.raises(SystemExit):
+        prove.read_list(listed)
+
+
+def test_every_listed_configuration_exists():
+    counts, _ = prove.read_list(prove.ALARMS)
+    assert {a[0] for a in counts} <= set(prove.BY_NAME)
