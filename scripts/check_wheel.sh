@@ -57,8 +57,15 @@ echo "wheel-check: every verb gives identical output from the wheel and the edit
 studies="$(cd "$work" && "$work/venv/bin/swarmvm" sim uav 2>&1)" && status=0 || status=$?
 [ "$status" = 2 ] && [ "$studies" = 'swarmvm: error: the studies need numpy, pandas, pyarrow, dask, tqdm, matplotlib: pip install "swarmvm[studies]"' ] \
   || { echo "wheel-check: 'swarmvm sim uav' without the studies extra: status $status, $studies"; exit 1; }
+# Of tests/boundary, the input files and the output layer: what the wheel's verbs read and write
+# (the escaping and layer checks there read the checkout's sources and runtimes, not the wheel).
+boundary=()
+for name in budgets hostile_inputs inputs limits messages_bounded output_faults output_over_input outputs \
+    readers_generative structured_bounds byte_file_names; do
+  boundary+=("$root/tests/boundary/test_$name.py")
+done
 (cd "$work" && "$work/venv/bin/python" -m pytest -p no:cacheprovider --rootdir "$root" \
-  "$root/tests/cli" "$root/tests/boundary" "$root/tests/golden" "$root/tests/targets/pipuck" "$root/tests/python" \
+  "$root/tests/cli" "${boundary[@]}" "$root/tests/golden" "$root/tests/targets/pipuck" "$root/tests/python" \
   "$root/tests/docs" \
   "$root/tests/footprint/test_footprint_ci.py")   # every command README.md and docs/ show, run with the wheel's
                                                   # swarmvm; the CI recipes, and --cycles building the board it ships
