@@ -7,6 +7,10 @@ VENV ?= .venv
 PYTHON ?= $(VENV)/bin/python
 SWARMVM ?= $(VENV)/bin/swarmvm
 BUILD ?= build
+# The suite on every core (pytest-xdist; tests/conftest.py groups what shares fixtures);
+# TEST_WORKERS=0 runs it in one process.
+TEST_WORKERS ?= auto
+PYTEST_PARALLEL = $(if $(filter 0,$(TEST_WORKERS)),,-n $(TEST_WORKERS) --dist loadgroup)
 EXAMPLE ?= examples/energy_worker/supervisor.yaml
 # Kilobot images (mk/kilobot.mk): STREAM=1 builds the streaming variant, apart.
 KILOBOT_OUT := $(BUILD)/kilobot$(if $(filter 1,$(STREAM)),-stream)
@@ -20,7 +24,7 @@ setup:
 # its timings: docs/proof.md).
 test: setup typecheck
 	$(MAKE) --no-print-directory prove
-	$(PYTHON) -m pytest tests
+	$(PYTHON) -m pytest tests $(PYTEST_PARALLEL)
 
 typecheck: setup
 	$(PYTHON) -m mypy
@@ -28,7 +32,7 @@ typecheck: setup
 
 # The fast part of the suite (no emulator, nothing slow): about a minute and a half.
 test-quick: setup
-	$(PYTHON) -m pytest tests -m "not emulator and not slow"
+	$(PYTHON) -m pytest tests -m "not emulator and not slow" $(PYTEST_PARALLEL)
 
 # Rewrite the golden copies (tests/golden/) after an intended change: every target's generated code
 # for the example and the feature models of tests/golden/golden.py, and gen's refusal messages.

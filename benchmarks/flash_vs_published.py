@@ -16,7 +16,7 @@ and steps, calling the same trivial checks and actions.
   draws from kilolib's ``rand_soft``), so no C library generator is counted on its side;
 - swarmvm: runtime_c/swarmvm.c in its minimal profile (``SVM_TRUSTED_IMAGE``, every
   ``SVM_WITH_*`` feature 0 -- the violation counter too, and the public-first pass when the model
-  has no public event --, the model's exact limits, the options fixed at build with
+  has no public uncontrollable event --, the model's exact limits, the options fixed at build with
   ``SVM_TRUSTED_OPTIONS``) with the canonical image compiled in without names (``swarmvm pack
   --no-names``'s image: the profile reads no name), run with the published VM's input rule
   (edge inputs, after-inputs, uniform).
@@ -59,6 +59,7 @@ import tables as published_tables  # noqa: E402  (benchmarks/published_form/tabl
 from conformance import c_harness  # noqa: E402
 from figures import add_json_option, write_figures  # noqa: E402
 from swarmvm.api import compile_model  # noqa: E402
+from swarmvm.compiler.tables import Tables  # noqa: E402
 from swarmvm.readers.event_script import random_script  # noqa: E402
 
 RUNTIME = ROOT / "runtime_c"
@@ -81,7 +82,8 @@ FEATURES = ["-DSVM_WITH_BINDINGS=0", "-DSVM_WITH_NAMES=0", "-DSVM_WITH_FIRST=0",
 OPTIONS = "0x01u"   # SVM_INPUTS_EDGE | SVM_CONTROL_AFTER_INPUTS | SVM_POLICY_UNIFORM
 PROFILE = ["-DSVM_TRUSTED_IMAGE=bench_image", *FEATURES, "-DSVM_WITH_VIOLATIONS=0",
            "-DSVM_TRUSTED_OPTIONS=" + OPTIONS]
-# Added to the profile for a model without public events: the step has no public-first pass.
+# Added to the profile for a model without public uncontrollable events: the step has no
+# public-first pass.
 NO_PUBLIC = "-DSVM_WITH_PUBLIC=0"
 # swarmvm's generator, counted in its flash; the "without" figures take its bytes off.
 GENERATOR = "svm_random"
@@ -345,6 +347,13 @@ class Row:
         return None if a is None or b is None else a / b
 
 
+def has_public_inputs(tables: Tables) -> bool:
+    """Whether the model has a public uncontrollable event: the only events the public-first pass
+    polls and applies first (a public controllable event is chosen as any other), so a model
+    without one needs no pass (``SVM_WITH_PUBLIC=0``, whose load refuses an image with one)."""
+    return bool(tables.public & ~tables.controllable)
+
+
 class Supervisor:
     """One supervisor's sources for both VMs, written under ``work``."""
 
@@ -367,7 +376,7 @@ class Supervisor:
         (self.published_dir / "main.c").write_text(PUBLISHED_MAIN)
         (self.swarmvm_dir / "main.c").write_text(SWARMVM_MAIN)
         self.overflows: set[tuple[str, str]] = set()
-        if "-DSVM_TRUSTED_IMAGE=bench_image" in profile and tables.public == 0:
+        if "-DSVM_TRUSTED_IMAGE=bench_image" in profile and not has_public_inputs(tables):
             self.profile = [*profile, NO_PUBLIC]
         self.limits = ["-DBENCH_OPTIONS=" + OPTIONS, "-DSVM_MAX_EVENTS=%d" % tables.num_events, "-DSVM_MAX_SUPERVISORS=%d" % tables.num_supervisors,
                        "-DSVM_MAX_STATES=%d" % tables.num_states, "-DBENCH_IMAGE_SIZE=%du" % len(self.image)]

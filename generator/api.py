@@ -42,6 +42,7 @@ from .footprint import report as fp_report
 from .footprint.budget import Budgets, read_budgets
 from .footprint.cycles import measure_cycles
 from .footprint.delta import read_baseline
+from .footprint.sidecar import sidecar_of
 from .footprint.stack import STEP_ROOT, measure_stack, parse_frames, parse_indirect
 from .inspector.page import Inspection, write_page
 from .models import properties
@@ -250,7 +251,10 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles:
     an event script each image runs in the emulator for its cycles per step (its checks answered
     through the dispatch declared for ``svm_step``). The declarations of the image's target record
     (``elf.indirect``: what the generated program's own indirect calls reach) come first, so a
-    generated project needs none of its own; ``indirect`` adds to them. ``frames``: ``FUNCTION=BYTES``
+    generated project needs none of its own, nor do those of the sidecar gen wrote beside it
+    (``X.footprint.json`` beside ``X.elf``, refused when it is not of this image's build:
+    swarmvm.footprint.sidecar); ``indirect`` adds to them, and ``cycles`` may name that sidecar,
+    whose event script it runs. ``frames``: ``FUNCTION=BYTES``
     declarations of the frames of functions with no .su entry whose code does not make theirs certain."""
     from elftools.common.exceptions import ELFError
     given = parse_indirect(indirect)
@@ -261,7 +265,9 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles:
             footprint = fp.measure(path)
             record = TARGETS[footprint.target].elf
             calls = parse_indirect(record.indirect if record is not None else ())
-            for caller, targets in given.items():
+            sidecar = sidecar_of(path, footprint.target, footprint.tables_sha256)     # gen's, beside the ELF
+            beside = parse_indirect(sidecar.indirect, sidecar.path) if sidecar is not None else {}
+            for caller, targets in (*beside.items(), *given.items()):
                 calls[caller] = tuple(dict.fromkeys(calls.get(caller, ()) + targets))
             footprint.indirect = calls
             footprint.frames = declared_frames
@@ -281,11 +287,11 @@ def measure_footprint(elfs: Sequence[str], indirect: Sequence[str] = (), cycles:
 
 @checked(elfs=file_names, budget=optional(file_name), baseline=optional(file_name),
          fail_on_growth=optional(number(0, float("inf"))), limits=instance(fp.Limits, "a swarmvm.footprint.measure.Limits"),
-         indirect=texts, cycles=optional(file_name), frames=texts)
+         indirect=texts, cycles=optional(file_name), frames=texts, symbols=optional(integer(1)))
 def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: str | None = None,
                      fail_on_growth: float | None = None, limits: fp.Limits = fp.Limits(),
                      indirect: Sequence[str] = (), cycles: str | None = None,
-                     frames: Sequence[str] = ()) -> fp_report.FootprintReport:
+                     frames: Sequence[str] = (), symbols: int | None = None) -> fp_report.FootprintReport:
     """The footprint of linked images checked against ``limits`` and the budgets of the TOML file
     ``budget`` (``[tool.swarmvm.footprint]`` of a ``pyproject.toml``), compared with the JSON report
     ``baseline``, each column's growth judged against ``fail_on_growth`` per cent, indirect calls
@@ -293,14 +299,18 @@ def footprint_report(elfs: Sequence[str], budget: str | None = None, baseline: s
     for its cycles per step (measure_footprint); the files are read first, so a bad one raises
     InputError before any image is measured (docs/footprint.md).
     ``swarmvm.footprint.report`` writes it as Markdown, JUnit XML or JSON; ``failures()`` is empty
-    when it passes."""
+    when it passes. ``symbols``: the N largest section and symbol changes of each row against the
+    baseline (as Bloaty's ``-d sections,symbols``)."""
     if fail_on_growth is not None and baseline is None:
         raise InputError("", "fail_on_growth", "growth is measured against a baseline: give one")
+    if symbols is not None and baseline is None:
+        raise InputError("", "symbols", "the section and symbol changes are against a baseline: give one")
     budgets = read_budgets(budget) if budget is not None else Budgets()
     old = read_baseline(baseline) if baseline is not None else None
     parse_indirect(indirect)
     parse_frames(frames)
-    return fp_report.build(measure_footprint(elfs, indirect, cycles, frames), limits, budgets, old, fail_on_growth)
+    return fp_report.build(measure_footprint(elfs, indirect, cycles, frames), limits, budgets, old, fail_on_growth,
+                           symbols)
 
 
 @checked(paths=file_names, max_states=_MAX_STATES, all_findings=flag)

@@ -28,6 +28,15 @@
 #define FLAT_MASKS 0
 #endif
 
+/* The step's counters (events, passes, events fired): with flat masks the fastest type of at
+ * least 8 bits, a register on ARM (no truncation after each increment) and a byte on AVR;
+ * elsewhere a byte, as always. */
+#if FLAT_MASKS
+typedef uint_fast8_t count_t;
+#else
+typedef uint8_t count_t;
+#endif
+
 /* The transition code (fire), called once in the step: a function on the bare-metal Cortex-M4
  * (CapBot, -Os), where inlining it into the step costs instructions per step on the models with
  * several supervisors; inlined elsewhere (docs/footprint.md, "Cost per step";
@@ -82,8 +91,8 @@ static SVM_COLD uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t
     return (uint16_t)(rd_raw(image, source, at) | ((uint16_t)rd_raw(image, source, (uint16_t)(at + 1u)) << 8));
 }
 
-#define RD(vm, at) rd_raw((vm)->image, (vm)->source, (uint16_t)(at))
-#define RD16(vm, at) rd16_raw((vm)->image, (vm)->source, (uint16_t)(at))
+#define RD(vm, at) rd_raw((vm)->image, VM_SOURCE(vm), (uint16_t)(at))
+#define RD16(vm, at) rd16_raw((vm)->image, VM_SOURCE(vm), (uint16_t)(at))
 
 /* Whether an image read from `source` is in AVR program memory, where pgm_read_word/dword
  * read 2 or 4 bytes at once. */
@@ -156,6 +165,18 @@ static SVM_INLINE uint16_t peek16(uint8_t source, const uint8_t *p)
 #define VM_SOURCE(vm) ((vm)->source)
 #endif
 
+/* The counts the inspection functions give: the image's, 0 before a load. The profile keeps no
+ * copy of them in the VM (its image's are the build's limits). */
+#ifdef SVM_TRUSTED_IMAGE
+#define LOADED_EVENTS(vm) ((vm)->image != 0 ? (uint8_t)SVM_MAX_EVENTS : (uint8_t)0u)
+#define LOADED_SUPERVISORS(vm) ((vm)->image != 0 ? (uint8_t)SVM_MAX_SUPERVISORS : (uint8_t)0u)
+#define LOADED_MASK_BYTES(vm) ((vm)->image != 0 ? (uint8_t)SVM_MASK_BYTES : (uint8_t)0u)
+#else
+#define LOADED_EVENTS(vm) ((vm)->num_events)
+#define LOADED_SUPERVISORS(vm) ((vm)->num_supervisors)
+#define LOADED_MASK_BYTES(vm) ((vm)->mask_bytes)
+#endif
+
 /* The step's options: the build's (SVM_TRUSTED_OPTIONS, the minimal profile), or the VM's. */
 #ifdef SVM_TRUSTED_OPTIONS
 #define VM_OPTIONS(vm) ((void)(vm), (uint8_t)(SVM_TRUSTED_OPTIONS))
@@ -217,7 +238,12 @@ static SVM_INLINE uint8_t popcount8(uint8_t x)
  * zero-extended. A mask's events are visited in index order with a cursor, a byte at a time:
  * zero bytes are skipped whole and no mask is shifted by a variable count, which AVR does one
  * bit at a time. Transitions (fire, weight) test single bytes of the image's masks instead. */
-#if SVM_MASK_BYTES == 1
+#if FLAT_MASKS && !defined(__AVR__)
+/* The minimal profile's flat masks off AVR: a register's width, so that no operation on a mask
+ * truncates it to 8 or 16 bits again (an instruction each on ARM). Every mask the step keeps is
+ * the image's, zero-extended, or a subset of the events 0 .. E-1. */
+typedef unsigned int mask_t;
+#elif SVM_MASK_BYTES == 1
 typedef uint8_t mask_t;
 #elif SVM_MASK_BYTES == 2
 typedef uint16_t mask_t;
@@ -449,6 +475,18 @@ static SVM_INLINE void cursor_single(cursor_t *c, uint8_t e)
 
 #endif /* MASK_ARRAY */
 
+#if FLAT_MASKS && !SVM_POPCOUNT_TABLE
+/* Flat masks without the table: one bit cleared per set bit over the whole mask, the fewest
+ * bytes (the masks counted, an enabled set or a state's events below one, have few bits). */
+static uint8_t mask_count(mask_t a)
+{
+    count_t count = 0;
+    for (; a != 0u; a = (mask_t)(a & (mask_t)(a - 1u))) {
+        count++;
+    }
+    return (uint8_t)count;
+}
+#else
 static SVM_MASK_INLINE uint8_t mask_count(mask_t a)
 {
     cursor_t c;
@@ -458,6 +496,7 @@ static SVM_MASK_INLINE uint8_t mask_count(mask_t a)
     }
     return count;
 }
+#endif
 
 /* The next event of the cursor (which has one), then visited. */
 static SVM_MASK_INLINE uint8_t cursor_next(cursor_t *c)
@@ -1007,7 +1046,6 @@ SVM_COLD int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length)
     /* The header's counts, num_events, num_supervisors and num_states (bytes 6-9, little-endian),
      * as the build's limits give them; with them the image's mask width (ceil(E / 8)) and, for
      * 256 states or fewer, its state width (1) are the compiler's, and the step's constants. */
-    const uint8_t source = VM_SOURCE(vm);
     uint32_t counts;
     (void)length;
     if (image != SVM_TRUSTED_IMAGE) {
@@ -1023,24 +1061,23 @@ SVM_COLD int svm_load_P(svm_vm_t *vm, const uint8_t *image, uint16_t length)
         return SVM_ERR_LIMITS;
     }
 #if !SVM_WITH_PUBLIC
-    /* A build without the public pass runs only an image without public events. */
-    if (mask_any(mask_read(source, image + PUBLIC_AT(SVM_MASK_BYTES), SVM_MASK_BYTES))) {
+    /* A build without the public pass runs only an image without public uncontrollable events
+     * (the only ones the pass polls and applies first; a public controllable event is chosen
+     * as any other). */
+    if (mask_any(mask_and_not(mask_read(VM_SOURCE(vm), image + PUBLIC_AT(SVM_MASK_BYTES), SVM_MASK_BYTES),
+                              mask_read(VM_SOURCE(vm), image + CONTROLLABLE_AT, SVM_MASK_BYTES)))) {
         return SVM_ERR_LIMITS;
     }
 #endif
-    /* What the inspection functions read (the step takes the build's constants instead). */
+    /* The counts, mask width and source are the build's (LOADED_*, VM_SOURCE). */
     vm->image = image;
-    vm->source = source;
-    vm->num_events = (uint8_t)SVM_MAX_EVENTS;
-    vm->num_supervisors = (uint8_t)SVM_MAX_SUPERVISORS;
-    vm->mask_bytes = SVM_MASK_BYTES;
 #if SVM_MAX_STATES > 256 || SVM_WITH_WEIGHTED || SVM_WITH_LEARNED || SVM_WITH_NAMES
-    vm->width = READ(image, source, SVM_AT_STATE_WIDTH);
+    vm->width = READ(image, VM_SOURCE(vm), SVM_AT_STATE_WIDTH);
 #endif
 #if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED || SVM_WITH_NAMES
     {   /* the sections after the targets, read only by the features that use them */
-        uint8_t flags = rd_raw(image, source, SVM_AT_FLAGS);
-        uint16_t trans = rd16_raw(image, source, SVM_AT_NUM_TRANSITIONS);
+        uint8_t flags = rd_raw(image, VM_SOURCE(vm), SVM_AT_FLAGS);
+        uint16_t trans = rd16_raw(image, VM_SOURCE(vm), SVM_AT_NUM_TRANSITIONS);
         uint16_t pos = (uint16_t)(TRUSTED_TARGETS_AT + trans * vm->width);
 #if SVM_WITH_WEIGHTED || SVM_WITH_LEARNED
         vm->probs_at = (flags & SVM_FLAG_PROBS) ? pos : 0u;
@@ -1263,6 +1300,40 @@ static void violate(svm_vm_t *vm, uint8_t event, uint8_t s)
 /* Docs/semantics.md step 3: move every supervisor that has the event, count violations, then
  * run the event's action. Supervisor records are walked in order, without multiplications.
  * `m` is the mask width: see step_m for why it is a parameter. */
+#if FLAT_MASKS
+/* Flat masks: the event is its bit in a whole mask, `bit`; the alphabet and the state's `defined`
+ * mask are read whole (one or two bytes), and the transition's rank is the count of the state's
+ * events below it, with no walk over the mask's bytes. */
+static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, mask_t bit, uint8_t m)
+{
+    const uint8_t *img = VM_IMAGE(vm);
+    const uint8_t *states = img + VM_STATES_AT(vm), *targets = img + VM_TARGETS_AT(vm);
+    const uint8_t *sup = img + SUPS_AT(m);
+    svm_state_t *state = vm->state;
+    uint8_t src = VM_SOURCE(vm), narrow = VM_NARROW(vm);
+    count_t n = VM_SUPERVISORS(vm), s;
+    for (s = 0; s < n; s++, sup += SUP_SIZE(m)) {
+        const uint8_t *st;
+        mask_t defined;
+        uint16_t t, local;
+        if (!mask_any(mask_and(mask_read(src, sup, m), bit))) {
+            continue;
+        }
+        st = states + (uint16_t)state[s] * STATE_SIZE(m);
+        defined = mask_read(src, st, m);
+        if (!mask_any(mask_and(defined, bit))) {
+#if SVM_WITH_VIOLATIONS
+            violate(vm, event, s);
+#endif
+            continue;
+        }
+        t = (uint16_t)(peek16(src, st + m) + mask_count(mask_and(defined, (mask_t)(bit - 1u))));
+        local = narrow ? PEEK(src, targets + t) : peek16(src, targets + 2u * t);
+        state[s] = (svm_state_t)(peek16(src, sup + m) + local);
+    }
+    act(vm, event);
+}
+#else
 static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit, uint8_t m)
 {
     const uint8_t *img = VM_IMAGE(vm);
@@ -1291,6 +1362,7 @@ static SVM_FIRE void fire(svm_vm_t *vm, uint8_t event, uint8_t byte, uint8_t bit
     }
     act(vm, event);
 }
+#endif
 
 /* The enabled controllable events among `candidates` (docs/semantics.md step 5). */
 static SVM_MASK_INLINE mask_t enabled_set(const svm_vm_t *vm, mask_t candidates, uint8_t m)
@@ -1340,7 +1412,7 @@ uint32_t svm_weight(const svm_vm_t *vm, uint8_t event)
 {
     const uint8_t *img = vm->image, *sup, *states, *probs;
     uint32_t weight = SVM_Q15_ONE;
-    uint8_t src = vm->source, m = VM_MASK_BYTES(vm), byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
+    uint8_t src = VM_SOURCE(vm), m = VM_MASK_BYTES(vm), byte = (uint8_t)(event >> 3), bit = (uint8_t)(1u << (event & 7u)), s;
     if (vm->probs_at == 0) {
         return weight;
     }
@@ -1381,12 +1453,12 @@ SVM_COLD uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
 
 #if FLAT_MASKS
 /* The `n`-th event (from 0) of `mask`, which has more than n. */
-static uint8_t nth_event(mask_t mask, uint8_t n)
+static uint8_t nth_event(mask_t mask, count_t n)
 {
-    uint8_t event;
+    count_t event;
     for (event = 0;; mask = (mask_t)(mask >> 1), event++) {
         if ((mask & 1u) && n-- == 0u) {
-            return event;
+            return (uint8_t)event;
         }
     }
 }
@@ -1504,7 +1576,7 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
 #if FLAT_MASKS
     svm_dispatch_fn dispatch = vm->dispatch;
     mask_t current = 0, todo = SVM_WITH_PUBLIC ? first : second, bit;
-    uint8_t pass, event;
+    count_t pass, event;
     for (pass = SVM_WITH_PUBLIC ? 0u : 1u; pass < 2u; pass++, todo = second) {
         for (event = 0, bit = 1u; todo != 0u; todo = (mask_t)(todo >> 1), bit = (mask_t)(bit << 1), event++) {
             uint8_t occurs;
@@ -1587,13 +1659,16 @@ static SVM_INLINE uint8_t control_continues(uint8_t options, mask_t occurring)
 static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
 {
     const uint8_t *img = VM_IMAGE(vm);
-    uint8_t src = VM_SOURCE(vm), options = VM_OPTIONS(vm), fired = 0, pass, count, event;
+    uint8_t src = VM_SOURCE(vm), options = VM_OPTIONS(vm);
+    count_t fired = 0, pass, count, event;
     mask_t valid = valid_events(vm);
     mask_t controllable = mask_and(mask_read(src, img + CONTROLLABLE_AT, m), valid);
 #if SVM_WITH_PUBLIC
     mask_t public_mask = mask_read(src, img + PUBLIC_AT(m), m);
 #else
-    const mask_t public_mask = MASK_NONE;     /* the image has no public event (svm_load_P) */
+    /* The image has no public uncontrollable event (svm_load_P), the only ones the input order
+     * puts first: the order is the one of no public event. */
+    const mask_t public_mask = MASK_NONE;
 #endif
     mask_t uncontrollable = mask_and_not(valid, controllable);
     /* 1. Poll, in input order: public uncontrollable events, then private ones. 2. Occurrence. */
@@ -1607,8 +1682,7 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
         mask_t bit = 1u;
         for (event = 0; firing != 0u; firing = (mask_t)(firing >> 1), bit = (mask_t)(bit << 1), event++) {
             if (firing & 1u) {
-                fire(vm, event, SVM_MASK_BYTES == 1 ? 0u : (uint8_t)(event >> 3),
-                     SVM_MASK_BYTES == 1 || event < 8u ? (uint8_t)bit : (uint8_t)(bit >> 8), m);
+                fire(vm, event, bit, m);
                 fired++;
             }
         }
@@ -1625,7 +1699,7 @@ static SVM_INLINE uint8_t step_m(svm_vm_t *vm, uint8_t m)
                 continue;
             }
         }
-        return fired;
+        return (uint8_t)fired;
     }
 #else
     cursor_t firing;
@@ -1682,7 +1756,11 @@ uint8_t svm_step(svm_vm_t *vm)
 void svm_fire_event(svm_vm_t *vm, uint8_t event)
 {
     if (vm->image != 0 && event < VM_EVENTS(vm)) {
+#if FLAT_MASKS
+        fire(vm, event, (mask_t)((mask_t)1u << event), SVM_MASK_BYTES);
+#else
         fire(vm, event, (uint8_t)(event >> 3), (uint8_t)(1u << (event & 7u)), VM_MASK_BYTES(vm));
+#endif
     }
 }
 #endif
@@ -1691,30 +1769,30 @@ void svm_fire_event(svm_vm_t *vm, uint8_t event)
 
 uint8_t svm_num_events(const svm_vm_t *vm)
 {
-    return vm->num_events;
+    return LOADED_EVENTS(vm);
 }
 
 uint8_t svm_num_supervisors(const svm_vm_t *vm)
 {
-    return vm->num_supervisors;
+    return LOADED_SUPERVISORS(vm);
 }
 
 uint8_t svm_mask_bytes(const svm_vm_t *vm)
 {
-    return vm->mask_bytes;
+    return LOADED_MASK_BYTES(vm);
 }
 
 SVM_COLD uint16_t svm_first_state(const svm_vm_t *vm, uint8_t supervisor)
 {
-    if (vm->image == 0 || supervisor >= vm->num_supervisors) {
+    if (vm->image == 0 || supervisor >= LOADED_SUPERVISORS(vm)) {
         return 0;
     }
-    return RD16(vm, SUP_AT(vm, supervisor) + vm->mask_bytes);
+    return RD16(vm, SUP_AT(vm, supervisor) + VM_MASK_BYTES(vm));
 }
 
 uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor)
 {
-    if (vm->image == 0 || supervisor >= vm->num_supervisors) {
+    if (vm->image == 0 || supervisor >= LOADED_SUPERVISORS(vm)) {
         return 0;
     }
     return (uint16_t)(vm->state[supervisor] - svm_first_state(vm, supervisor));
@@ -1722,7 +1800,7 @@ uint16_t svm_state(const svm_vm_t *vm, uint8_t supervisor)
 
 uint16_t svm_global_state(const svm_vm_t *vm, uint8_t supervisor)
 {
-    return (vm->image == 0 || supervisor >= vm->num_supervisors) ? 0u : vm->state[supervisor];
+    return (vm->image == 0 || supervisor >= LOADED_SUPERVISORS(vm)) ? 0u : vm->state[supervisor];
 }
 
 uint16_t svm_num_states(const svm_vm_t *vm)
@@ -1739,13 +1817,13 @@ uint32_t svm_violations(const svm_vm_t *vm)
 
 uint8_t svm_is_controllable(const svm_vm_t *vm, uint8_t event)
 {
-    return (uint8_t)(event < vm->num_events && (RD(vm, CONTROLLABLE_AT + (event >> 3)) & (1u << (event & 7u))));
+    return (uint8_t)(event < LOADED_EVENTS(vm) && (RD(vm, CONTROLLABLE_AT + (event >> 3)) & (1u << (event & 7u))));
 }
 
 uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event)
 {
-    return (uint8_t)(event < vm->num_events &&
-                     (RD(vm, PUBLIC_AT(vm->mask_bytes) + (event >> 3)) & (1u << (event & 7u))));
+    return (uint8_t)(event < LOADED_EVENTS(vm) &&
+                     (RD(vm, PUBLIC_AT(VM_MASK_BYTES(vm)) + (event >> 3)) & (1u << (event & 7u))));
 }
 
 #if SVM_WITH_NAMES
@@ -1759,7 +1837,7 @@ SVM_COLD int svm_event_index(const svm_vm_t *vm, const char *name)
     if (name[0] == 'E' && name[1] == 'V' && name[2] == '_') {
         name += 3;
     }
-    for (e = 0; e < vm->num_events; e++) {
+    for (e = 0; e < LOADED_EVENTS(vm); e++) {
         uint8_t len = RD(vm, pos);
         for (i = 0; i < len && name[i] != '\0'; i++) {
             if ((uint8_t)name[i] != RD(vm, pos + 1u + i)) {
@@ -1786,10 +1864,10 @@ SVM_COLD uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, ui
     if (cap != 0u) {
         buf[0] = '\0';
     }
-    if (vm->image == 0 || vm->names_at == 0 || event >= vm->num_events) {
+    if (vm->image == 0 || vm->names_at == 0 || event >= LOADED_EVENTS(vm)) {
         return 0;
     }
-    pos = name_at(vm->image, vm->source, vm->names_at, event);
+    pos = name_at(vm->image, VM_SOURCE(vm), vm->names_at, event);
     len = RD(vm, pos);
     for (i = 0; i < len && (uint16_t)i + 1u < cap; i++) {
         buf[i] = (char)RD(vm, pos + 1u + i);

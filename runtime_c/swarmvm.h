@@ -60,9 +60,10 @@
  *                         after-inputs, uniform: the step has that one path. svm_set_options
  *                         still sets the seed; its `options` are stored but not used.
  *                         (Any build may set it; the profile is where it pays.)
- *   SVM_WITH_PUBLIC       0: the model has no public event, so the step has no public-first
- *                         pass; svm_load_P refuses an image with a public event
- *                         (SVM_ERR_LIMITS). Only with SVM_TRUSTED_IMAGE (an #error otherwise).
+ *   SVM_WITH_PUBLIC       0: the model has no public uncontrollable event (the only events the
+ *                         input order puts first), so the step has no public-first pass;
+ *                         svm_load_P refuses an image with one (SVM_ERR_LIMITS). Only with
+ *                         SVM_TRUSTED_IMAGE (an #error otherwise).
  * And for any build:
  *   SVM_WITH_VIOLATIONS   0: no violation counter and no hook (svm_violations,
  *                         svm_set_on_violation not declared; svm_vm_t 6 bytes smaller on AVR).
@@ -249,12 +250,17 @@ typedef struct svm_vm {
 #if SVM_WITH_NAMES
     uint16_t names_at;          /* 0 when the image has no names */
 #endif
-    uint8_t num_events;
+#ifndef SVM_TRUSTED_IMAGE
+    uint8_t num_events;         /* the image's counts (the profile's are the build's limits) */
     uint8_t num_supervisors;
     uint8_t mask_bytes;
+#endif
     uint8_t width;              /* bytes of a target state number: 1 or 2 */
+#ifndef SVM_TRUSTED_IMAGE
     uint8_t source;             /* where the image lives: SVM_SOURCE_RAM (0), SVM_SOURCE_FLASH
-                                   (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte */
+                                   (1) or SVM_SOURCE_EEPROM (2); read it with svm_image_byte
+                                   (the profile's is a constant: program memory on AVR) */
+#endif
     uint8_t options;            /* SVM_INPUTS_* | SVM_CONTROL_* | SVM_POLICY_* */
 #if SVM_WITH_VIOLATIONS
     uint32_t violations;        /* saturates at SVM_MAX_VIOLATIONS */

@@ -29,3 +29,23 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 @pytest.fixture(scope="session")
 def vm():
     return python_vm()
+
+
+# `make test` runs the suite on every core (pytest-xdist, `--dist loadgroup`). A module's tests
+# stay together on one worker, so its module-scoped fixtures are built once; the folders whose
+# session-scoped fixtures build images or projects (the footprint images, the ARGoS controllers)
+# are one group each, so they are built once too. Those long groups are collected first: handed
+# out last, one of them would end the run alone on one core.
+_SHARED_FIXTURE_FOLDERS = ("footprint", "targets/argos")
+
+
+def _group(item: pytest.Item) -> str:
+    """The xdist group of a test: its shared-fixture folder, else its module's path."""
+    path = item.path.relative_to(TESTS).as_posix()
+    return next((folder for folder in _SHARED_FIXTURE_FOLDERS if path.startswith(folder + "/")), path)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        item.add_marker(pytest.mark.xdist_group(_group(item)))
+    items.sort(key=lambda item: _group(item) not in _SHARED_FIXTURE_FOLDERS)

@@ -201,6 +201,7 @@ FILTERS = {
     "py_string": py_string,
     "cmake_string": cmake_string,
     "yaml_string": yaml_string,
+    "markdown": markdown,
     "ident": identifier,
     "ident_part": identifier_part,
     "num": number,

@@ -214,11 +214,14 @@ def trace(inputs: tuple[str, ...], script_path: str, seed: int, input_mode: str,
               help="Run each image with this event script (Kilobot: simavr, CPU cycles; CapBot: QEMU, "
                    "instructions): mean and worst per step (checks answered through the dispatch declared "
                    "with --indirect svm_step=...).")
+@click.option("--symbols", "symbols", type=click.IntRange(1), metavar="N",
+              help="With --baseline: also list each row's N largest section changes and N largest symbol "
+                   "changes, read from the ELF (as Bloaty's -d sections,symbols).")
 @reports_errors
 def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | None, baseline_path: str | None,
               report_format: str, fail_on_growth: float | None, chart_path: str | None, runtime_sizes: bool,
               kilobot_flash: int, kilobot_stack: int, vm_limit: int, indirect: tuple[str, ...],
-              frames: tuple[str, ...], cycles_path: str | None) -> None:
+              frames: tuple[str, ...], cycles_path: str | None, symbols: int | None) -> None:
     """Report flash, static RAM and worst-case stack of linked VM images, split into VM core,
     tables and application.
 
@@ -229,13 +232,15 @@ def footprint(elfs: tuple[str, ...], json_path: str | None, budget_path: str | N
     it cannot judge."""
     if fail_on_growth is not None and baseline_path is None:
         raise click.BadOptionUsage("--fail-on-growth", "growth is measured against a --baseline: give one")
+    if symbols is not None and baseline_path is None:
+        raise click.BadOptionUsage("--symbols", "the section and symbol changes are against a --baseline: give one")
     if budget_path is None and Path(fp_budget.PYPROJECT).is_file():
         budget_path = fp_budget.PYPROJECT
     limits = fp.Limits(vm=vm_limit).replaced("kilobot", flash=kilobot_flash, min_stack=kilobot_stack)
     try:
         report = api.footprint_report(list(elfs), budget=budget_path, baseline=baseline_path,
                                       fail_on_growth=fail_on_growth, limits=limits, indirect=indirect,
-                                      cycles=cycles_path, frames=frames)
+                                      cycles=cycles_path, frames=frames, symbols=symbols)
     except fp.FootprintError as exc:
         terminal.fail(exc)
     # first, as one transaction: a file that cannot be written ends the command before any output

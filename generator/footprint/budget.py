@@ -29,7 +29,7 @@ from typing import Any
 from ..boundary.errors import InputError, decode_text, read_input
 from ..boundary.structure import check_structure
 from ..targets import TARGETS as ALL_TARGETS
-from .measure import COLUMN, Limits, Row
+from .measure import COLUMN, Limits, Row, robot_limits
 
 PYPROJECT = "pyproject.toml"
 PYPROJECT_TABLE = ("tool", "swarmvm", "footprint")
@@ -229,3 +229,27 @@ def checks(rows: list[Row], limits: Limits, budgets: Budgets) -> list[Check]:
                                % (column, value, unit, bound, unit, value - bound, unit),
                                allowed[1] if column in allowed[0] else ""))
     return found
+
+
+# The robot's memory each column's figure is a share of (RobotLimits' field): a part of flash or of
+# static RAM, and a stack, which lives in the SRAM. The VM figure is flash and RAM together, and
+# cycles are time: neither is a share of one memory.
+CAPACITY = {"flash": "flash", "flash_core": "flash", "flash_tables": "flash", "flash_application": "flash",
+            "ram": "sram", "ram_core": "sram", "ram_tables": "sram", "ram_application": "sram",
+            "stack": "sram", "stack_step": "sram"}
+NO_CAPACITY = {"vm": "VM is flash and RAM together, a share of neither",
+               "cycles": "the target's record gives no cycles a step may take",
+               "cycles_mean": "the target's record gives no cycles a step may take"}
+
+
+def capacity(target: str, column: str) -> tuple[int | None, str]:
+    """The robot's own capacity a figure of ``column`` takes a share of, from its target's record
+    (the real robot's, not the limits a run replaced), and what it is (``Kilobot flash``); or
+    None and why there is none: never an invented one."""
+    memory = CAPACITY.get(column)
+    if memory is None:
+        return None, NO_CAPACITY.get(column, "no capacity is known for %s" % column)      # escaped: the package's names; markdown() where written
+    robot = robot_limits().get(target)
+    if robot is None:
+        return None, "the %s target's record gives no flash or SRAM size" % target      # escaped: the package's names; markdown() where written
+    return getattr(robot, memory), "%s %s" % (robot.robot, "SRAM" if memory == "sram" else memory)      # escaped: the package's names; markdown() where written

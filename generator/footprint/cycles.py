@@ -13,7 +13,9 @@ QEMU, its instructions per step counted the same way (footprint_cycles_m4: QEMU 
 cycle timing).
 
 The dispatch a check goes through is one of the functions declared with
-``--indirect svm_step=TARGET,...`` (the same declaration the worst-case stack needs).
+``--indirect svm_step=TARGET,...`` (the same declaration the worst-case stack needs; a generated
+project's come from its target's record and its sidecar). The script is an event script file,
+or the sidecar gen wrote for the image's build, which holds one (swarmvm.footprint.sidecar).
 """
 
 import hashlib
@@ -26,13 +28,14 @@ from elftools.elf.sections import SymbolTableSection
 
 from ..boundary.errors import ELF_MAX_BYTES, InputError, open_input
 from ..compiler.runtime_files import image_format
-from ..readers.event_script import read_script_rows
+from ..readers.event_script import parse_script, read_script_rows
 from ..boundary.errors import read_input as read_script_bytes
 from ..targets import TARGETS
 from .cycles_m4 import m4_steps
 from .kilobot_board import KilobotToolMissing
 from .kilobot_board import run as run_board
 from .measure import FootprintError
+from .sidecar import SUFFIX, checked, read_sidecar
 from .stack import STEP_ROOT
 
 TICKS_PER_STEP_AT_MOST = 64             # kilolib ticks one step may take before the run gives up
@@ -75,13 +78,16 @@ def _symbols(elf_path: str, names: set[str]) -> dict[str, int]:
                 if s.name in names and s["st_info"]["type"] in ("STT_FUNC", "STT_OBJECT")}
 
 
-def script_masks(script: str, image: bytes) -> tuple[list[bytes], list[tuple[str, ...]]]:
+def script_masks(script: str, image: bytes, text: str | None = None) -> tuple[list[bytes], list[tuple[str, ...]]]:
     """An event script read against the image's events: each step's event mask (bit e % 8 of
-    byte e / 8, at least one byte) and the names of the events in it."""
+    byte e / 8, at least one byte) and the names of the events in it. ``text``: the script's
+    lines, given (a sidecar's), ``script`` the file they come from; else the file ``script``."""
     parsed = image_format().Image.parse(image)
     names = parsed.names or [str(e) for e in range(parsed.num_events)]
     masks, inputs = [], []
-    for row in read_script_rows(script, names, parsed.controllable):
+    rows = (read_script_rows(script, names, parsed.controllable) if text is None else
+            iter(parse_script("%s: script" % script, text, names, parsed.controllable)))
+    for row in rows:
         mask = bytearray(max(1, (parsed.num_events + 7) // 8))
         for event in row:
             mask[event // 8] |= 1 << event % 8
@@ -94,8 +100,14 @@ def script_masks(script: str, image: bytes) -> tuple[list[bytes], list[tuple[str
 
 def measure_cycles(elf: str, target: str, image: bytes, script: str, dispatch: tuple[str, ...]) -> Cycles:
     """Cycles (Cortex-M4: instructions) of each step of ``elf`` run with ``script``; ``dispatch``:
-    the functions svm_step calls through its dispatch pointer (their checks answer from the script)."""
-    masks, inputs = script_masks(script, image)
+    the functions svm_step calls through its dispatch pointer (their checks answer from the script).
+    A ``script`` named ``*.footprint.json`` is a sidecar (swarmvm.footprint.sidecar), whose script
+    is run once it is found to be the sidecar of this image's build (InputError otherwise)."""
+    text = None
+    if script.endswith(SUFFIX):
+        sidecar = checked(read_sidecar(script), elf, target, hashlib.sha256(image).hexdigest())
+        text = sidecar.script_text
+    masks, inputs = script_masks(script, image, text)
     addresses = _symbols(elf, {STEP_ROOT, "kilo_ticks", *dispatch})
     if STEP_ROOT not in addresses:
         raise FootprintError("%s: no %s in the image: --cycles runs a program that steps the VM" % (elf, STEP_ROOT))
@@ -110,7 +122,7 @@ def measure_cycles(elf: str, target: str, image: bytes, script: str, dispatch: t
     if record is None or record.emulator not in EMULATORS:
         raise FootprintError("%s: --cycles: no emulator runs target %s's images" % (elf, target))
     per_step = EMULATORS[record.emulator](elf, addresses, checks, masks)
-    digest = hashlib.sha256(read_script_bytes(script)).hexdigest()
+    digest = hashlib.sha256(read_script_bytes(script) if text is None else text.encode("utf-8")).hexdigest()
     return Cycles(script, per_step, inputs[per_step.index(max(per_step))], digest)
 
 

@@ -17,10 +17,12 @@ other targets only is refused outright, before anything is measured against it."
 import json
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Any, cast
 
 from ..boundary.errors import InputError, decode_text, read_input
 from ..boundary.structure import check_structure
 from .measure import COLUMN, COLUMNS, Row, column_value
+from .symbols import ImageFacts, baseline_facts
 
 REPORT_FORMAT = "swarmvm footprint"
 REPORT_VERSION = 1
@@ -31,8 +33,12 @@ STACK_KEYS = {"total": "stack", "step": "stack_step"}
 
 @dataclass(frozen=True)
 class Baseline:
+    """A baseline's rows, and by row name what else each image records: where it came from
+    (ELF, commit, toolchain) and its section and symbol sizes (``--symbols`` compares them)."""
     file: str
     rows: list[Row]
+    facts: dict[str, ImageFacts] = field(default_factory=dict)
+    keys: dict[str, str] = field(default_factory=dict)      # row name -> its key in the file, images[i]
 
 
 def _text(path: str, key: str, value: object) -> str | None:
@@ -93,14 +99,16 @@ def read_baseline(path: str) -> Baseline:
     images = data.get("images")
     if not isinstance(images, list):
         raise InputError(path, "images", "must be a list")
-    rows, seen = [], set()
+    rows, facts, keys = [], {}, {}
     for index, image in enumerate(images):
-        row = _image_row(path, "images[%d]" % index, image)
-        if row.name in seen:
-            raise InputError(path, "images[%d]" % index, "a second row %s" % row.name)
-        seen.add(row.name)
+        key = "images[%d]" % index
+        row = _image_row(path, key, image)
+        if row.name in keys:
+            raise InputError(path, key, "a second row %s" % row.name)
+        keys[row.name] = key
+        facts[row.name] = baseline_facts(path, key, cast(dict[str, Any], image))      # an object: _image_row checked it
         rows.append(row)
-    return Baseline(path, rows)
+    return Baseline(path, rows, facts, keys)
 
 
 NOT_MEASURED = "not measured"

@@ -259,10 +259,14 @@ def _check_symbol(path: ElfPath, elf: ELFFile, symbol: Symbol) -> None:
 
 
 def _symbols(elf: ELFFile) -> Iterator[tuple[Symbol, str | None]]:
-    """(symbol, defining file or None) for every sized object and function, aliases once."""
+    """(symbol, defining file or None) for every sized object and function, an alias (a second
+    symbol at the same address of the same section) once. Only an ARM function's address has its
+    Thumb bit cleared: on AVR an object may sit at an odd address, and clearing bit 0 there would
+    take it for an alias of the one before it."""
     table = elf.get_section_by_name(".symtab")
     if not isinstance(table, SymbolTableSection):
         raise FootprintError("no symbol table (stripped image)")
+    thumb = elf["e_machine"] == "EM_ARM"
     seen: set[tuple[int, int]] = set()
     current_file: str | None = None
     for symbol in table.iter_symbols():
@@ -274,7 +278,7 @@ def _symbols(elf: ELFFile) -> Iterator[tuple[Symbol, str | None]]:
             continue
         if not isinstance(symbol["st_shndx"], int):
             continue
-        key = (symbol["st_shndx"], symbol["st_value"] & ~1)
+        key = (symbol["st_shndx"], symbol["st_value"] & ~1 if thumb and kind == "STT_FUNC" else symbol["st_value"])
         if key in seen:
             continue
         seen.add(key)

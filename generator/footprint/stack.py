@@ -87,15 +87,15 @@ class Stack:
         return dict(known, unknown=self.unknown) if self.unknown else known
 
 
-def parse_indirect(declarations: Sequence[str]) -> dict[str, tuple[str, ...]]:
-    """``CALLER=TARGET,TARGET`` declarations (``--indirect``) as {caller: targets}; InputError
-    naming the one that is not of that form."""
+def parse_indirect(declarations: Sequence[str], file: str = "") -> dict[str, tuple[str, ...]]:
+    """``CALLER=TARGET,TARGET`` declarations (``--indirect``, or those of the sidecar ``file``) as
+    {caller: targets}; InputError naming the one that is not of that form."""
     found: dict[str, tuple[str, ...]] = {}
     for index, text in enumerate(declarations):
         caller, equals, targets = (part.strip() for part in text.partition("="))
         names = tuple(t.strip() for t in targets.split(",") if t.strip())
         if not equals or not caller or not names:
-            raise InputError("", "indirect[%d]" % index, "%r is not CALLER=TARGET[,TARGET...]" % text)
+            raise InputError(file, "indirect[%d]" % index, "%r is not CALLER=TARGET[,TARGET...]" % text)
         found[caller] = found.get(caller, ()) + names
     return found
 

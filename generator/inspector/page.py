@@ -6,9 +6,12 @@ lays out each local supervisor (swarmvm.models.pictures' DOT, names already esca
 distinct vector of states is numbered once with its enabled controllable events, each run
 becomes arrays of small integers (a vector number, a fired-events number and the violation
 counter per step), and the transitions a step takes are walked once per distinct (vector
-before, events fired) pair, every supervisor's, input by input, then the chosen event. The page carries its own script and style (templates/inspect/, package
-data) and a Content-Security-Policy that allows no fetch at all: it opens from ``file://``
-offline, and the same inputs give the same bytes.
+before, events fired) pair, every supervisor's, input by input, then the chosen event. The
+supervisors' tables go in whole too, so that the page's simulator can fire any event from any
+vector, not only those the traces reached; lanes are in natural order. The page carries its
+own script and style (templates/inspect/, package data) and a Content-Security-Policy that
+allows no fetch at all: it opens from ``file://`` offline, and the same inputs give the same
+bytes.
 
 Size: a page keeps at most :data:`ROBOT_STEPS` steps of all runs together (20 robots of 50,000
 steps); beyond, each run keeps the same window of steps from ``first_step`` and the page
@@ -78,11 +81,20 @@ def _moves(model: Model, before: tuple[int, ...], fired: tuple[int, ...]) -> lis
     return moves
 
 
+def natural_key(name: str) -> list[tuple[int, int, str]]:
+    """A lane's sort key: runs of digits compared as numbers, so robot2 comes before robot10
+    (the shell's glob order puts robot10 first)."""
+    return [(1, int(part), "") if part.isdigit() else (0, 0, part) for part in re.findall(r"\d+|\D+", name)]
+
+
 def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool,
               difference: Difference | None = None) -> dict[str, object]:
     """Everything the page's script displays, as JSON-ready lists of integers and names.
     ``difference``: where the whole runs compared differ (:func:`compare_traces`); without it,
-    it is looked for in the steps the runs keep."""
+    it is looked for in the steps the runs keep. Lanes are sorted by :func:`natural_key`, except
+    the two runs compared, which keep the order given (the first is drawn solid, the second dashed)."""
+    if not compare:
+        runs = sorted(runs, key=lambda run: natural_key(run.name))
     vectors, fired_sets = _Numbering(), _Numbering()
     fired_sets(())
     vectors(tuple(0 for _ in model.supervisors))
@@ -99,6 +111,10 @@ def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool,
         runs_data.append(dict(name=run.name, steps=run.steps, counts=run.counts, lastViolations=run.last_violations,
                               last=vectors(run.last), v=v, f=f, x=[run.start_violations] + run.violations))
     conjunction = Conjunction.of(model)
+    # The simulator's tables: per supervisor its alphabet and, per state, its [event, target]
+    # pairs, so the page can fire any event from any vector, not only those the traces reached.
+    alphabets = [sorted(sup.alphabet) for sup in model.supervisors]
+    tables = [[[[e, t] for e, t, _ in transitions] for transitions in sup.states] for sup in model.supervisors]
     controllable = sum(1 << e for e, c in enumerate(model.controllable) if c)
     vector_list = vectors.values()
     if compare and difference is None:
@@ -111,6 +127,7 @@ def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool,
                 vectors=vector_list,
                 enabled=[list(events_of(conjunction.enabled(tuple(v)) & controllable)) for v in vector_list],
                 fired=fired_sets.values(), moves=moves, runs=runs_data, compare=compare,
+                source=model.source, alphabets=alphabets, tables=tables,
                 difference=difference.first if difference else None,
                 differences=difference.steps if difference else 0,
                 differenceShown=difference.shown if difference else None)
@@ -172,7 +189,13 @@ BODY = """<body>
 <label><input id="filter" type="checkbox"> only its steps in the log</label>
 <button id="nextEvent" title="next occurrence of the event (e)">next event</button>
 <button id="nextViolation" title="next violation (v)">next violation</button>
-<button id="difference" title="first difference (d)" hidden>first difference</button>
+<button id="difference" title="first difference" hidden>first difference</button>
+<button id="prevDifference" title="previous difference (D)" hidden>previous difference</button>
+<button id="nextDifference" title="next difference (d)" hidden>next difference</button>
+<label>go to step <input id="goto" type="number" min="0" size="7"></label>
+<label>find <input id="find" type="search" size="12" placeholder="EV_x or 2=q3"
+title="an event (EV_x): the steps where it fires; a state (supervisor=qN): the steps where it is entered"></label>
+<button id="findNext" title="next match (Enter in the box; Shift+Enter: previous)">find next</button>
 <span id="status" role="status"></span>
 </nav>
 <details id="keys"><summary>Keyboard</summary>
@@ -183,13 +206,44 @@ BODY = """<body>
 <tr><td><kbd>+</kbd> <kbd>-</kbd></td><td>faster / slower</td></tr>
 <tr><td><kbd>e</kbd> <kbd>E</kbd></td><td>next / previous step where the chosen event fired (in the robot shown while it has one)</td></tr>
 <tr><td><kbd>v</kbd> <kbd>V</kbd></td><td>next / previous violation (likewise)</td></tr>
-<tr><td><kbd>d</kbd></td><td>first difference of the two runs compared, among the steps kept</td></tr>
+<tr><td><kbd>d</kbd> <kbd>D</kbd></td><td>next / previous difference of the two runs compared, among the steps kept</td></tr>
+<tr><td><kbd>z</kbd> <kbd>Z</kbd></td><td>zoom the timeline in / out around the step shown (or Ctrl+wheel over it; drag to pan)</td></tr>
+<tr><td><kbd>g</kbd> <kbd>/</kbd></td><td>the go-to-step box / the find box (<kbd>Esc</kbd>: back to these keys)</td></tr>
+<tr><td><kbd>n</kbd></td><td>simulator: end the step with the VM's choice</td></tr>
+<tr><td><kbd>u</kbd></td><td>simulator: undo the last event fired</td></tr>
 <tr><td><kbd>&#x2191;</kbd> <kbd>&#x2193;</kbd></td><td>previous / next robot</td></tr>
 </table>
 </details>
-<section id="lanes"><h2>Robots</h2><canvas id="timeline" width="1000" height="40"></canvas><div id="laneNames"></div></section>
+<section id="lanes"><h2>Robots</h2>
+<div id="zoom"><button id="zoomIn" title="zoom in (z)">zoom in</button><button id="zoomOut" title="zoom out (Z)">zoom out</button>
+<button id="zoomAll" title="the whole window of steps">all steps</button> <span id="zoomLabel"></span></div>
+<div id="laneBox"><div id="laneNames"></div><canvas id="timeline" width="1000" height="40"></canvas></div>
+<div id="chartBox"><label>robots per state of <select id="chartSup"></select></label>
+<canvas id="chart" width="1000" height="80"></canvas>
+<span id="chartNow"></span><div id="chartLegend"></div></div>
+</section>
+<div id="here">
 <section id="now"><h2>At this step</h2><div id="panels"></div></section>
+<section id="sim"><h2>Simulator</h2>
+<p id="simFrom"></p>
+<div id="simEvents"></div>
+<div id="simControls">
+<button id="simStep" title="end the step: the VM chooses its event (n)">end step (VM's choice)</button>
+<button id="simUndo" title="undo the last event fired (u)">undo</button>
+<button id="simReset" title="back to where the simulation started">reset</button>
+<label>seed <input id="simSeed" type="number" min="0" max="4294967295" value="1"></label>
+<label>policy <select id="simPolicy"><option value="uniform">uniform</option><option value="first">first</option></select></label>
+<button id="simSave" title="download the path as an event script">save script</button>
+</div>
+<p id="simStatus" role="status"></p>
+<table id="simLog"></table>
+<details id="simScriptBox"><summary>event script</summary><pre id="simScript"></pre></details>
+</section>
+</div>
 <section id="drawings"><h2>Supervisors</h2>
+<label id="depthBox">show <select id="depth"><option value="-1" selected>every state</option>
+<option value="1">1 transition</option><option value="2">2 transitions</option><option value="3">3 transitions</option>
+</select> around the current state (for large supervisors)</label>
 %(drawings)s
 </section>
 <section id="log"><h2>Trace</h2><table id="logTable"></table></section>

@@ -7,6 +7,7 @@ its docs page (docs/extending.md), registered here by :func:`register` and named
 A target differs from another only in its record: the tables and image are the same for all."""
 
 import dataclasses
+import fnmatch
 import os
 import pkgutil
 import sys
@@ -20,7 +21,8 @@ from ..boundary.errors import InputError
 from ..boundary.escape import UnsafeText
 from ..compiler.pipeline import Compiled
 from ..compiler.render import FOLDERS, context, render
-from .record import Target
+from ..footprint.sidecar import SUFFIX, sidecar_text
+from .record import Readme, Target
 
 TARGET_PATH = "SWARMVM_TARGET_PATH"
 
@@ -87,8 +89,36 @@ def generate(compiled: Compiled, target: str, **options: object) -> dict[str, tu
             raise InputError(compiled.model.source, "--target", "target %s: %s: %s" % (target, rel, error))
     for source, output in copies:
         files[output.format(name=name)] = (copy_banner(output) + source.read_bytes(), False)
+    if spec.elf is not None:        # what `swarmvm footprint` needs beside the ELF the folder's build links
+        text = sidecar_text(target, compiled.image, compiled.tables, compiled.model.events,
+                            spec.elf.indirect + spec.elf.generated_indirect, spec.elf.script_steps)
+        files[name + SUFFIX] = (text.encode("utf-8"), False)
+    if spec.readme is not None:
+        files[README] = (readme(spec, spec.readme, values, files), False)
     _refuse_case_twins(compiled, target, files)
     return files
+
+
+README = "README.md"
+README_TEMPLATE = "common/README.md.j2"
+
+
+def readme(spec: Target, about: Readme, values: dict[str, object], files: dict[str, tuple[bytes, bool]]) -> bytes:
+    """The folder's README.md (README_TEMPLATE, one for every target, with the part ``about`` names):
+    what each of ``files`` and the README itself is, one row per pattern of ``about`` in its order
+    (a file under the first that matches it; one named by none last, undescribed) and owner, and
+    how to build, run and measure the folder."""
+    name = str(values["name"])
+    patterns = [(pattern.format(name=name), what.format(name=name)) for pattern, what in about.files]
+    rows: dict[tuple[int, bool], list[str]] = {}
+    for rel in sorted({*files, README}):
+        index = next((i for i, (pattern, _) in enumerate(patterns) if fnmatch.fnmatchcase(rel, pattern)), len(patterns))
+        rows.setdefault((index, files.get(rel, (b"", False))[1]), []).append(rel)
+    listed = [dict(names=names, keep=keep, what=patterns[index][1] if index < len(patterns) else "")
+              for (index, keep), names in sorted(rows.items())]
+    return render(README_TEMPLATE, dict(values, readme_files=listed, readme_part=about.part, measured=spec.elf is not None,
+                                        description=spec.description,
+                                        script_steps=spec.elf.script_steps if spec.elf else 0))
 
 
 def _refuse_case_twins(compiled: Compiled, target: str, files: dict[str, tuple[bytes, bool]]) -> None:

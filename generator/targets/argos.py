@@ -10,7 +10,7 @@ from ..compiler.model import Model
 from ..compiler.naming import EventNames, event_names
 from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import CPP_RUNTIME_HEADERS, RUNTIME_CPP, TEMPLATES
-from .record import Target
+from .record import Readme, Target
 
 
 def argos_names(model: Model, events: list[EventNames]) -> None:
@@ -48,4 +48,16 @@ TARGET = Target(
     page="robots/argos.md",
     copies=tuple((RUNTIME_CPP / n, n) for n in (*CPP_RUNTIME_HEADERS, "swarmvm_argos.hpp", "swarmvm_argos_controller.hpp",
                                                  "swarmvm_argos_report.hpp", "swarmvm_argos.cmake")),
-    rules=rules)
+    rules=rules,
+    readme=Readme("argos/readme.md.j2", (
+        ("{name}_image.hpp", "the table image as a constexpr array, event constants"),
+        ("{name}_base.h", "the generated controller base class: binds every event by name, the public events' "
+                          "messages, the private events' methods pure virtual"),
+        ("{name}_controller.[ch]*", "your controller, derived from the base: the private events' Check_EVENT and "
+                                    "On_EVENT methods"),
+        ("CMakeLists.txt", "includes swarmvm_argos.cmake and builds the controller library"),
+        ("{name}.argos", "the experiment (arena, robots, the controller's parameters)"),
+        ("swarmvm*", "the C++ VM and its ARGoS glue (a copy of swarmvm's runtime), and swarmvm_argos.cmake, which "
+                     "finds ARGoS"),
+        ("{name}.svm", "the table image"),
+        ("README.md", "this file"))))

@@ -9,7 +9,7 @@ from ..compiler.naming import MAX_MODEL_NAME, WINDOWS_DEVICES
 from ..compiler.pipeline import Compiled
 from ..compiler.render import context, render
 from ..compiler.runtime_files import TEMPLATES, image_format
-from .record import Target
+from .record import Readme, Target
 from .values import C_RUNTIME_GROUPS, c_copies, headers, sources
 
 
@@ -88,4 +88,14 @@ TARGET = Target(
     page="robots/c.md",
     copies=c_copies(*C_RUNTIME_GROUPS),
     values=values,
-    build=("make", "-s"))
+    build=("make", "-s"),
+    readme=Readme("c/readme.md.j2", (
+        ("{name}_tables.[ch]", "the table image as a C array and its loader, event constants"),
+        ("{name}_dispatch.c", "the compile-time dispatch from the VM to your callbacks"),
+        ("{name}_main.c", "the host control loop: ./{name} N steps the VM N times"),
+        ("Makefile", "builds {name} from the sources above and the runtime"),
+        ("swarmvm*", "the C VM (a copy of swarmvm's runtime): the VM and the image format it reads, Nadzoru 2's C API "
+                     "(SCT_*), the trace line"),
+        ("{name}_controller.c", "one {name}_on_EVENT per event and one {name}_check_EVENT per uncontrollable event"),
+        ("{name}.svm", "the table image"),
+        ("README.md", "this file"))))

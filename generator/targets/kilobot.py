@@ -11,8 +11,8 @@ from ..compiler.naming import EventNames, event_names
 from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import TEMPLATES
 from .c import file_order
-from .record import Elf, RobotLimits, Target
-from .values import C_RUNTIME_GROUPS, c_copies, features, headers, sources
+from .record import Elf, Readme, RobotLimits, Target
+from .values import C_RUNTIME_GROUPS, c_copies, features, headers, minimal_features, sources
 
 KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
 # 32 KB of flash minus the bootloader at 0x7000; 2 KB of SRAM, 1 KB of it left to the stack
@@ -62,13 +62,16 @@ def values(compiled: Compiled) -> dict[str, object]:
     """The runtime its Makefile compiles (more with ``STREAM=1`` and ``LEARNED=1``), the features
     of each build (the streaming one matches a received image's events by name), and each public
     event's message payload (event index -> the first KILOBOT_MESSAGE_BYTES characters of its
-    message name)."""
+    message name), and what the minimal flash profile of the generated program leaves out for this
+    model (:func:`~swarmvm.targets.values.minimal_features`)."""
     probabilistic = compiled.tables.probs is not None
+    events = event_names(compiled.model)
+    public_inputs = any(e.public and not e.controllable for e in events)
     return dict(runtime_sources=sources("core", "kilobot"), runtime_headers=headers("core", "kilobot"),
                 stream_sources=sources("stream"), learned_sources=sources("learn"),
                 features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),
-                payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES]
-                          for e in event_names(compiled.model) if e.message is not None},
+                public_inputs=public_inputs, minimal_features=minimal_features(public_inputs),
+                payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES] for e in events if e.message is not None},
                 **file_order(compiled))
 
 
@@ -90,4 +93,22 @@ TARGET = Target(
     build=("make", "-s", "{name}.elf"),     # with KILOLIB=<kilolib's build folder>
     limits=LIMITS,
     elf=Elf("EM_AVR", architecture="avr", emulator="kilobot_board", make_rule="{build}/kilobot/{name}.elf",
-            platform_runtime=("swarmvm_kilobot.c",), indirect=KILOBOT_INDIRECT))
+            platform_runtime=("swarmvm_kilobot.c",), indirect=KILOBOT_INDIRECT),
+    readme=Readme("kilobot/readme.md.j2", (
+        ("Makefile", "builds {name}.hex (and {name}.elf) against your kilolib with its flags and this model's VM "
+                     "limits; MAIN= builds your own program instead of {name}_main.c"),
+        ("{name}_main.c", "the kilolib program: main, setup, loop and kilolib's message callbacks, each calling the "
+                          "Kilobot runtime"),
+        ("{name}_app.[ch]", "which message carries each public event, the image, dispatch and stream hook of this "
+                            "model"),
+        ("{name}_tables.[ch]", "the table image in flash (PROGMEM), event constants"),
+        ("{name}_dispatch.c", "the dispatch to your callbacks"),
+        ("{name}_controller.c", "{name}_on_EVENT (actions: kilolib calls such as set_motors) and {name}_check_EVENT "
+                                "for private uncontrollable events; message events are handled by the runtime"),
+        ("swarmvm*", "the C VM and the Kilobot runtime (a copy of swarmvm's): the VM, the calls of "
+                     "swarmvm_kilobot.h, the Nadzoru-compatible C API, the image stream receiver, the learned policy "
+                     "and its EEPROM store"),
+        ("{name}.svm", "the table image"),
+        ("{name}.footprint.json", "what swarmvm footprint needs to measure {name}.elf (its indirect calls, an event "
+                                  "script for --cycles, the table image's digest), beside where make builds it"),
+        ("README.md", "this file"))))

@@ -3,7 +3,7 @@ VM with the robot's adapters (real, and ``--sim``) and a fixed-rate app."""
 
 from ..compiler.runtime_files import RUNTIME_PY_DIR, TEMPLATES
 from .python import PY_RUNTIME_COPIES
-from .record import Target
+from .record import Readme, Target
 
 TARGET = Target(
     "pipuck",
@@ -14,4 +14,14 @@ TARGET = Target(
     template_folder=TEMPLATES / "pipuck",
     page="robots/pipuck.md",
     copies=PY_RUNTIME_COPIES + ((RUNTIME_PY_DIR / "swarmvm_pipuck.py", "swarmvm_pipuck.py"),),
-    keeps_order=True)
+    keeps_order=True,
+    readme=Readme("pipuck/readme.md.j2", (
+        ("{name}_tables.py", "the table image as bytes, event constants"),
+        ("{name}_app.py", "python3 -m {name}_app: binds your controller, the fixed-rate loop, --sim"),
+        ("{name}_controller.py", "class Controller(robot): check_EVENT (True when it occurred; message events are "
+                                 "answered from what the robot heard) and on_EVENT (the robot's action; message "
+                                 "events broadcast)"),
+        ("swarmvm_*.py", "the Python VM (a copy of swarmvm's runtime): the VM, its image reader and step writer, the "
+                         "apps' options and loop, the robot adapters (real and simulated)"),
+        ("{name}.svm", "the table image"),
+        ("README.md", "this file"))))

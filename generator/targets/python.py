@@ -9,7 +9,7 @@ from ..compiler.runtime_files import (
     RUNTIME_STEP_PY,
     TEMPLATES,
 )
-from .record import Target
+from .record import Readme, Target
 
 # The Python VM, the image format it reads and its step writer (swarmvm_vm imports swarmvm_format
 # and swarmvm_step_source), and what the apps (python3 -m <name>_app) share: their options and
@@ -29,4 +29,14 @@ TARGET = Target(
     copies=PY_RUNTIME_COPIES,
     learned_templates=(("python/learned.py.j2", "{name}_learned.py", False),),
     learned_copies=((RUNTIME_LEARN_PY, "swarmvm_learn.py"),),
-    keeps_order=True)
+    keeps_order=True,
+    readme=Readme("python/readme.md.j2", (
+        ("{name}_tables.py", "the table image as bytes, and the event names"),
+        ("{name}_app.py", "make_vm() and the fixed-rate main: python3 -m {name}_app"),
+        ("{name}_controller.py", "a Controller with one on_EVENT per event and one check_EVENT per uncontrollable "
+                                 "event"),
+        ("{name}_learned.py", "the learned checks of --learned-check"),
+        ("swarmvm_*.py", "the Python VM (a copy of swarmvm's runtime): the VM, the image format, its step writer, the "
+                         "apps' options and fixed-rate loop (and with --learned-check the learned policy)"),
+        ("{name}.svm", "the table image"),
+        ("README.md", "this file"))))

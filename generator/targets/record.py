@@ -52,6 +52,24 @@ class Elf:
     # What the indirect calls of an image built from the generated project reach (--indirect's
     # CALLER=TARGET,... form): footprint's stack and cycles use them, with the user's own added.
     indirect: tuple[str, ...] = ()
+    # What gen writes into the footprint sidecar of the generated project (swarmvm.footprint.sidecar),
+    # for the images built from it and no other: the declarations of its builds beyond ``indirect``
+    # (a target whose images come from several builds states each build's in its sidecar), and
+    # the steps of the event script, no more than an image of the target runs.
+    generated_indirect: tuple[str, ...] = ()
+    script_steps: int = 40
+
+
+@dataclass(frozen=True)
+class Readme:
+    """What the README.md gen writes into every generated folder says of this target (one
+    template for all, templates/common/README.md.j2): ``part`` names the target's template of
+    macros ``build()`` and ``run()``, its commands in its own words; ``files`` says what each
+    file gen writes is, as (pattern of output names, fnmatch, with {name}; what it is), the
+    first pattern that matches a file describing it: every file gen writes matches one, so the
+    README lists them all (tests/targets/test_readme.py)."""
+    part: str
+    files: tuple[tuple[str, str], ...]
 
 
 @dataclass(frozen=True)
@@ -72,3 +90,4 @@ class Target:
     build: tuple[str, ...] = ()             # the command that builds the generated folder in place ({name})
     limits: RobotLimits | None = None       # a robot's hard limits (footprint checks)
     elf: Elf | None = None                  # its linked images, when footprint measures them
+    readme: Readme | None = None            # what its folder's README.md says of it

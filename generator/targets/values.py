@@ -58,6 +58,14 @@ def headers(*groups: str) -> list[str]:
     return [name[:-len(".h")] for name in runtime_files(*groups) if name.endswith(".h")]
 
 
+def minimal_features(public_inputs: bool) -> list[tuple[str, int]]:
+    """The features the minimal flash profile (swarmvm.h's SVM_TRUSTED_IMAGE) leaves out of a
+    generated program because of its model: the step's public-first pass when the model has no
+    public uncontrollable event (``public_inputs`` false). (Whether the violation counter goes
+    too depends on the user's controller, which the build reads: templates/kilobot/Makefile.j2.)"""
+    return [] if public_inputs else [("PUBLIC", 0)]
+
+
 def features(probabilistic: bool, names: bool) -> list[tuple[str, int]]:
     """The (feature, 0 or 1) a generated program sets, ``-DSVM_WITH_<feature>=<value>`` in its
     build (c/_macros.j2's feature_flags): its callbacks go through the generated

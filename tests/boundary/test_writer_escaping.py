@@ -42,6 +42,7 @@ KNOWN_SAFE: dict[tuple[str, str, str], str] = {
     ("generator/footprint/chart.py", "svg_chart", "COLUMN[column].label"): _PACKAGE,
     ("generator/footprint/chart.py", "svg_chart", "part"): _PACKAGE + ": PARTS",
     ("generator/footprint/cycles.py", "script_masks", "names[e]"): "event names: validated identifiers (the image's)",
+    ("generator/footprint/cycles.py", "script_masks", "script"): _MESSAGE + " (the sidecar an error names)",
     ("generator/footprint/delta.py", "_change", "(after.script_sha256 or '')[:12]"): _NUMBERS,
     ("generator/footprint/delta.py", "_change", "before.script_sha256[:12]"): _NUMBERS,
     ("generator/footprint/delta.py", "_image_row", "key"): _MESSAGE,

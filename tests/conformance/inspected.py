@@ -20,7 +20,9 @@ def inspected_states(supervisor, traces: dict, folder: Path) -> dict:
         files[-1].write_text("".join(line + "\n" for line in lines))
     page = api.inspect(str(supervisor), [str(f) for f in files], str(folder / "page.html"))
     data = json.loads(DATA.search(Path(page.path).read_text()).group(1))
-    return {run: [data["vectors"][v] for v in lane["v"][1:]] for run, lane in zip(sorted(traces), data["runs"])}
+    lanes = {Path(lane["name"]).name.removesuffix(".trace"): lane for lane in data["runs"]}   # in natural order
+    assert sorted(lanes) == sorted(traces)
+    return {run: [data["vectors"][v] for v in lanes[run]["v"][1:]] for run in traces}
 
 
 def states_of(traces: dict) -> dict:

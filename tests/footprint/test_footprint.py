@@ -88,7 +88,7 @@ def test_report_lists_every_image_and_writes_json(build, tmp_path):
     images = [elf(build, t, n) for t in ("capbot", "kilobot") for n in NAMES]
     result = swarmvm_footprint(*images, "--json", tmp_path / "f.json")
     assert result.returncode == 0, result.stderr
-    rows = [line for line in result.stdout.splitlines() if line.startswith("| capbot") or line.startswith("| kilobot")]
+    rows = [line for line in result.stdout.splitlines() if line.startswith(("| capbot |", "| kilobot |"))]
     assert len(rows) == 4
     data = json.loads((tmp_path / "f.json").read_text())
     assert data["violations"] == [] and len(data["images"]) == 4

@@ -1,12 +1,20 @@
 """`swarmvm footprint --chart FILE.svg` (docs/footprint.md, "Formats"): well-formed SVG with one
-bar group per row, each bar split into VM core, tables and application, the budget and limit
-marked; the same report gives the same bytes; a name holding markup cannot break the file, nor
-the Markdown and JUnit reports. Before this change there was no --chart (usage error)."""
+bar group per row, each bar split into VM core, tables and application, a stack bar and a cycles
+bar where measured, the budget and limit marked; against a baseline its bar above each; a row
+over a budget or limit marked; one scale per target; the same report gives the same bytes; a
+name holding markup cannot break the file, nor the Markdown and JUnit reports. Before this
+change there was no --chart (usage error); before issue 36, point 3, no baseline bars, no stack
+or cycles, no over-budget mark, and one scale for every target."""
 
 import xml.etree.ElementTree as ET
 
 from footprint_images import elf, swarmvm_footprint
-from swarmvm.footprint import measure as footprint
+from swarmvm.footprint import budget, chart as fp_chart, delta, measure as footprint, report
+from swarmvm.footprint.cycles import Cycles
+from swarmvm.footprint.measure import Footprint, Split
+from swarmvm.footprint.stack import Stack
+
+PARTS = ("core", "tables", "application")
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -28,15 +36,19 @@ def test_one_bar_group_per_row_with_its_split_budget_and_limit(build, larger, tm
     root = chart(*images, "--budget", budget, path=tmp_path / "f.svg")
     rows = groups(root)
     assert sorted(rows) == ["capbot/energy_worker", "kilobot/energy_worker", "kilobot/network_worker"]
+    paths = dict(zip(["capbot/energy_worker", "kilobot/network_worker", "kilobot/energy_worker"], images))
     for name, group in rows.items():
-        parts = [r.get("class") for r in group.iter(SVG + "rect")]
-        assert parts == ["core", "tables", "application"] * 2            # flash, then RAM
+        parts = [r.get("class") for r in group.iter(SVG + "rect") if r.get("class") in PARTS + ("stack",)]
+        known = "unknown" not in [t.text for t in group.iter(SVG + "text")]        # flash and RAM are known
+        assert parts == ["core", "tables", "application"] * 2 + ["stack"] * known   # flash, RAM, stack (if known)
         lines = sorted(line.get("class") for line in group.iter(SVG + "line"))
         kilobot = name.startswith("kilobot/")
-        # Kilobot: the flash budget, the flash and RAM limits; CapBot: neither limit applies to bytes
-        assert lines == (["budget", "limit", "limit"] if kilobot else [])
+        # Kilobot: the flash budget, the flash, RAM and SRAM (stack) limits; CapBot: none applies to bytes
+        assert lines == (["budget", "limit", "limit", "limit"] if kilobot else [])
+        over = kilobot and (footprint.measure(paths[name]).flash.total > 12000 or not known)   # budget, SRAM limit
+        assert (group.get("data-over") == "true") == over
     measured = footprint.measure(larger)
-    rects = list(rows["kilobot/energy_worker"].iter(SVG + "rect"))
+    rects = [r for r in rows["kilobot/energy_worker"].iter(SVG + "rect") if r.get("class") in PARTS]
     widths = [float(r.get("width")) for r in rects[:3]]
     # the flash bar's parts are in the proportions of the measured split
     assert abs(widths[0] / sum(widths) - measured.flash.core / measured.flash.total) < 0.01
@@ -97,16 +109,62 @@ def test_json_and_chart_are_one_transaction(build, tmp_path):
 
 def test_no_budget_or_limit_line_strikes_a_value_label(build, tmp_path):
     """A budget just above the figure put its line across the label written after the bar
-    (issue 36, point 7): the label now starts after such a line."""
+    (issue 36, point 7): the labels are now in a column of their own, right of every line."""
     image = elf(build, "kilobot", "energy_worker")
     measured = footprint.measure(image)
-    budget = tmp_path / "budget.toml"
-    budget.write_text("[kilobot]\nflash = %d\nram = %d\n" % (measured.flash.total + 400, measured.ram.total + 20))
-    (group,) = groups(chart(image, "--budget", budget, path=tmp_path / "f.svg", cwd=tmp_path)).values()
+    budget_file = tmp_path / "budget.toml"
+    budget_file.write_text("[kilobot]\nflash = %d\nram = %d\n" % (measured.flash.total + 400, measured.ram.total + 20))
+    (group,) = groups(chart(image, "--budget", budget_file, path=tmp_path / "f.svg", cwd=tmp_path)).values()
     labels = [t for t in group.iter(SVG + "text") if t.text and t.text.isdigit()]
-    assert [t.text for t in labels] == [str(measured.flash.total), str(measured.ram.total)]
+    assert [t.text for t in labels][:2] == [str(measured.flash.total), str(measured.ram.total)] and len(labels) == 3
     for line in group.iter(SVG + "line"):
         at = float(line.get("x1"))
         for label in labels:
             start = float(label.get("x"))
             assert not start - 2 <= at <= start + 7.5 * len(label.text), (line.get("class"), at, start)
+
+
+def image(target, name, flash, ram, stack=None, cycles=None, unknown=None):
+    """A row measured in memory (no ELF): flash and RAM split 1:1:2 into core, tables, application."""
+    made = Footprint(target, name, name + ".elf", Split(flash, flash // 4, flash // 4, flash - flash // 2),
+                     Split(ram, ram // 4, 0, ram - ram // 4))
+    if stack is not None or unknown:
+        made.stack = Stack(10, stack, {"total": unknown} if unknown else {})
+    if cycles is not None:
+        made.cycles = Cycles("events.txt", tuple(cycles), ("a",), "d" * 64)
+    return made
+
+
+def test_baseline_bars_stack_and_cycles_over_marks_and_one_scale_per_target(tmp_path):
+    """In memory: a CapBot row ten times the Kilobot's is drawn at the panel's width on its own
+    scale, as the Kilobot's largest figure is on its; a baseline's bars stand above the bars now
+    (a removed row has only its own); stack and cycles bars are drawn, an unknown stack labelled
+    and, over a budget, its row marked."""
+    old = tmp_path / "old.json"
+    old.write_text(report.json_report(report.build(
+        [image("kilobot", "a", 8000, 200, 100, [900, 1100]), image("kilobot", "gone", 4000, 100, 90, [800]),
+         image("capbot", "a", 80000, 20000, 300, [500])], footprint.Limits(), budget.Budgets())))
+    budgets = budget.parse_budgets("budget.toml", {"kilobot": {"stack": 150}})
+    now = report.build([image("kilobot", "a", 9000, 210, unknown="indirect call in f", cycles=[950, 1200]),
+                        image("capbot", "a", 80000, 20000, 300, [500])],
+                       footprint.Limits(), budgets, delta.read_baseline(str(old)))
+    root = ET.fromstring(fp_chart.svg_chart(now))
+    rows = groups(root)
+    assert sorted(rows) == ["capbot/a", "kilobot/a", "kilobot/gone"]
+    headings = [t.text for t in root.iter(SVG + "text") if t.get("class") == "target"]
+    assert headings == ["capbot (its own scale)", "kilobot (its own scale)"]
+    kilobot = rows["kilobot/a"]
+    classes = [r.get("class") for r in kilobot.iter(SVG + "rect")]
+    assert classes.count("before") == 4 and "cycles" in classes and "stack" not in classes      # stack unknown now
+    assert kilobot.get("data-over") == "true"                                 # its stack budget cannot be checked
+    texts = [t.text for t in kilobot.iter(SVG + "text")]
+    assert "unknown (was 100)" in texts and "9000 (+1000)" in texts and "1200 (+100)" in texts
+    assert [r.get("class") for r in rows["kilobot/gone"].iter(SVG + "rect")] == ["before"] * 4
+    assert "removed" in [t.text for t in rows["kilobot/gone"].iter(SVG + "text")]
+
+    def flash_width(group):
+        return sum(float(r.get("width")) for r in group.iter(SVG + "rect") if r.get("class") in PARTS[:3]
+                   and float(r.get("x")) < fp_chart._x(1))
+    assert abs(flash_width(rows["capbot/a"]) - fp_chart.PANEL_WIDTH) < 0.5             # its own scale's largest
+    limit = footprint.Limits().robots["kilobot"].flash                                 # the Kilobot's: its limit
+    assert abs(flash_width(kilobot) - fp_chart.PANEL_WIDTH * 9000 / limit) < 0.5

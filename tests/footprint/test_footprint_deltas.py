@@ -174,8 +174,13 @@ def bad(data):
     (bad(lambda r: dict(r, images=[dict(r["images"][0], flash=dict(r["images"][0]["flash"], core=-1))])),
      "images[0].flash.core", "must be a whole number"),
     (bad(lambda r: dict(r, images=r["images"] * 2)), "images[1]", "a second row kilobot/energy_worker"),
+    (bad(lambda r: dict(r, images=[dict(r["images"][0], commit={"sha": 5})])), "images[0].commit.sha",
+     "must be a string or null"),
+    (bad(lambda r: dict(r, images=[dict(r["images"][0], sections={".text": {"kind": "flash", "size": 1,
+                                                                            "symbols": {"f": -1}}})])),
+     "images[0].sections..text.symbols.f", "must be a whole number"),
 ], ids=["not_json", "a_list", "no_format", "version_2", "version_text", "images_not_a_list", "image_not_an_object",
-        "no_supervisor", "figure_text", "figure_negative", "row_twice"])
+        "no_supervisor", "figure_text", "figure_negative", "row_twice", "commit_not_text", "symbol_size_negative"])
 def test_a_baseline_that_is_not_a_report_of_this_version_is_one_line(build, content, key, message, tmp_path):
     report = tmp_path / "report.json"
     image = elf(build, "kilobot", "energy_worker")
@@ -233,6 +238,7 @@ def test_the_documented_pipeline_passes_the_same_image_and_catches_the_larger_on
     assert run_docs_command(junit, elf(build, "kilobot", "energy_worker"), tmp_path, build).returncode == 0
     grown = run_docs_command(compare, larger, tmp_path)
     assert grown.returncode == 1 and "grew by more than 5 %: " in grown.stderr
+    assert "| ballast_flash (energy_worker_controller.c) | .text |" in grown.stdout      # --symbols 10
     over = run_docs_command(junit, larger, tmp_path, build)
     assert over.returncode == 1
     failures = ET.parse(tmp_path / "footprint-junit.xml").getroot().findall(".//failure")

@@ -31,7 +31,8 @@ from click.testing import CliRunner  # noqa: E402
 from checkout import EXAMPLE, ROOT  # noqa: E402
 from swarmvm.api import learned_pairs  # noqa: E402
 from swarmvm.compiler.pipeline import compile_inputs  # noqa: E402
-from swarmvm.targets import TARGETS, generate  # noqa: E402
+from swarmvm.footprint.sidecar import SUFFIX  # noqa: E402
+from swarmvm.targets import README, TARGETS, generate  # noqa: E402
 
 NAME = "energy_worker"
 CORPUS = ROOT / "tests" / "corpus"
@@ -100,12 +101,13 @@ REFUSALS = (
 
 def rendered(inputs: Path, target: str, name: str | None = None, learned: tuple[str, ...] = ()) -> dict[str, bytes]:
     """{relative path: bytes} of the files ``target`` renders from templates for ``inputs``, as
-    ``swarmvm gen`` renders them (the same compile and learned checks; no runtime copies)."""
+    ``swarmvm gen`` renders them (the same compile and learned checks; no runtime copies), with
+    the README and the footprint sidecar gen writes beside them."""
     compiled = compile_inputs([str(inputs)], name=name)
     files = generate(compiled, target, learned_checks=learned_pairs(compiled, target, learned))
     spec = TARGETS[target]
     templates = spec.templates + (spec.learned_templates if learned else ())
-    names = {output.format(name=compiled.name) for _, output, _ in templates}
+    names = {output.format(name=compiled.name) for _, output, _ in templates} | {README, compiled.name + SUFFIX}
     return {rel: data for rel, (data, _keep) in files.items() if rel in names}
 
 

@@ -12,6 +12,7 @@ CORPUS = ROOT / "tests" / "corpus"
 EXAMPLE = ROOT / "examples" / "energy_worker" / "supervisor.yaml"
 FLIPFLOP = CORPUS / "nadzoru2" / "flipflop_S.yaml"          # its random scripts make violations
 NETWORK_WORKER = CORPUS / "openswarm" / "network_worker.yaml"  # 8 supervisors, up to 54 states
+HITL_LEADER = CORPUS / "openswarm" / "hitl_leader.yaml"        # up to 4 controllable events enabled at once
 SCREENSHOTS = ROOT / "build" / "inspect-screenshots"
 
 

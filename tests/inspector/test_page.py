@@ -92,16 +92,38 @@ def test_each_step_holds_the_trace_line_and_the_enabled_events(supervisor, tmp_p
     assert [kind for _name, kind, _public in data["events"]] == ["c" if c else "u" for c in model.controllable]
 
 
+def test_lanes_are_sorted_naturally_and_the_simulator_has_every_transition(tmp_path):
+    """Traces given in the shell's order (robot1, robot10, robot2) are lanes robot1, robot2,
+    robot10 (two compared keep the order given); the simulator's tables are the model's, every
+    transition of every state, so it can fire from vectors no trace reached."""
+    traces = [str(write_trace(tmp_path, EXAMPLE, 5, seed, "robot%d.trace" % seed)) for seed in (1, 10, 2)]
+    api.inspect(str(EXAMPLE), traces, str(tmp_path / "p.html"))
+    data = data_of((tmp_path / "p.html").read_bytes())
+    assert [r["name"] for r in data["runs"]] == ["robot1.trace", "robot2.trace", "robot10.trace"]
+    assert inspect_page.natural_key("a2b9x") < inspect_page.natural_key("a2b10") < inspect_page.natural_key("a10")
+    api.inspect(str(EXAMPLE), traces[1:], str(tmp_path / "c.html"), compare=True)
+    assert [r["name"] for r in data_of((tmp_path / "c.html").read_bytes())["runs"]] == ["robot10.trace", "robot2.trace"]
+    model = api.compile_model([str(EXAMPLE)]).model
+    assert data["alphabets"] == [sorted(sup.alphabet) for sup in model.supervisors]
+    assert data["tables"] == [[[[e, t] for e, t, _ in row] for row in sup.states] for sup in model.supervisors]
+    assert data["source"] == EXAMPLE.name
+
+
 @pytest.mark.parametrize("name", ["</script><script>window.pwned=1</script>", "<!--", "a & b <b>bold</b>",
                                   "\u2028</SCRIPT >"])
 def test_user_text_stays_text(name, tmp_path):
+    """The title, a trace's name and the supervisor file's (the simulator's replay command names
+    it) are JSON data in the page, never markup."""
+    supervisor = tmp_path / "<!--<script><b>.yaml"
+    supervisor.write_bytes(EXAMPLE.read_bytes())
     trace = write_trace(tmp_path, EXAMPLE, 5, 1, "<script>.trace")
-    api.inspect(str(EXAMPLE), [str(trace)], str(tmp_path / "p.html"), name=name)
+    api.inspect(str(supervisor), [str(trace)], str(tmp_path / "p.html"), name=name)
     page = (tmp_path / "p.html").read_bytes()
     found = parts(page)
     assert [t for t, _ in found.tags].count("script") == 2 and not any(t == "b" for t, _ in found.tags)
     data = json.loads(found.scripts[0])
     assert data["title"] == name and data["runs"][0]["name"] == "<script>.trace"
+    assert data["source"] == supervisor.name
     assert len(re.findall(rb"</script", page, re.I)) == 2
 
 

@@ -8,6 +8,8 @@ import subprocess
 from pathlib import Path
 
 from checkout import EXAMPLE, ROOT
+from swarmvm.footprint.sidecar import SUFFIX
+from swarmvm.targets import README
 from swarmvm.targets.record import Target
 
 NAME = "energy_worker"
@@ -22,9 +24,13 @@ def tree(folder: Path) -> dict[str, bytes]:
 
 
 def expected_files(record: Target, name: str) -> set[str]:
-    """The image, every template's output and every runtime copy (no learned checks asked)."""
+    """The image, every template's output and every runtime copy (no learned checks asked); the
+    README of a target that describes its files, the footprint sidecar of one whose images
+    footprint measures."""
     outputs = [out for _, out, _ in record.templates] + [out for _, out in record.copies]
-    return {"%s.svm" % name} | {out.format(name=name) for out in outputs}
+    extra = {README} if record.readme is not None else set()
+    extra |= {name + SUFFIX} if record.elf is not None else set()
+    return {"%s.svm" % name} | {out.format(name=name) for out in outputs} | extra
 
 
 def gen(record: Target, folder: Path, *options: str, env: dict[str, str] | None = None,

@@ -27,7 +27,7 @@ EXPECTED_FILES = {"CMakeLists.txt", "prj.conf", "energy_worker.svm", "src/main.c
                   "src/energy_worker_controller.c", "src/swarmvm_format.h", "src/swarmvm_crc_tables.h",
                   "src/swarmvm.h", "src/swarmvm.c",
                   "src/swarmvm_sct.h", "src/swarmvm_sct.c", "src/swarmvm_trace.h", "src/swarmvm_logic_page.h",
-                  "src/swarmvm_logic_page.c", "learned.conf"} | {
+                  "src/swarmvm_logic_page.c", "learned.conf", "README.md", "energy_worker.footprint.json"} | {
                   "src/swarmvm_%s.%s" % (m, x) for m in ("learn", "learn_store", "store", "store_zephyr") for x in "ch"}
 
 
