@@ -8,9 +8,11 @@ strings and comments, counting brackets and digit runs: it accepts every file sw
 a user would (supervisor files nest three deep, reports four) and refuses the rest in one line
 naming the file and the line."""
 
+import json
 import re
+from typing import Any
 
-from .errors import InputError
+from .errors import InputError, decode_text, read_input
 
 MAX_NESTING = 64    # a footprint report nests four levels, a budget file three
 MAX_DIGITS = 64     # far past any count, size or figure; int() itself stops at 4,300
@@ -53,3 +55,23 @@ def check_structure(path: str, text: str, comment: str = "") -> None:
             i = end
             continue
         i += 1
+
+
+def read_json_document(path: str, format_name: str, version: int, what: str, again: str,
+                       limit: int | None = None) -> dict[str, Any]:
+    """The JSON object of a file swarmvm wrote (a footprint report, a sidecar): read through the
+    input layer, bounded as above, its ``format`` ``format_name`` and its ``version`` this one;
+    otherwise one InputError naming the file and the key, ``what`` naming the kind of file and
+    ``again`` saying how to write it anew. Its other keys are the caller's to check."""
+    text = decode_text(path, read_input(path) if limit is None else read_input(path, limit=limit))
+    check_structure(path, text)
+    try:
+        data = json.loads(text)
+    except ValueError as exc:                           # JSONDecodeError
+        raise InputError(path, "", "not a JSON file (%s): %s" % (exc, again))
+    if not isinstance(data, dict) or data.get("format") != format_name:
+        raise InputError(path, "format", "not a swarmvm %s (%s)" % (what, again))
+    if data.get("version") != version:
+        raise InputError(path, "version", "a %s of version %s; this swarmvm reads version %d (%s)"
+                         % (what, json.dumps(data.get("version")), version, again))
+    return data

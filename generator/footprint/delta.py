@@ -14,13 +14,12 @@ cycles measured with another event script, a new row beside a removed one of its
 rename the digests do not confirm), and a comparison in which no row is in both. A baseline of
 other targets only is refused outright, before anything is measured against it."""
 
-import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, cast
 
-from ..boundary.errors import InputError, decode_text, read_input
-from ..boundary.structure import check_structure
+from ..boundary.errors import InputError
+from ..boundary.structure import read_json_document
 from .measure import COLUMN, COLUMNS, Row, column_value
 from .symbols import ImageFacts, baseline_facts
 
@@ -85,17 +84,8 @@ def _image_row(path: str, key: str, image: object) -> Row:
 def read_baseline(path: str) -> Baseline:
     """The rows of a JSON report written by ``swarmvm footprint --json`` of this format version;
     InputError naming the file and the key for anything else."""
-    text = decode_text(path, read_input(path))
-    check_structure(path, text)
-    try:
-        data = json.loads(text)
-    except ValueError as exc:                           # JSONDecodeError
-        raise InputError(path, "", "not a JSON file (%s)" % exc)
-    if not isinstance(data, dict) or data.get("format") != REPORT_FORMAT:
-        raise InputError(path, "format", "not a swarmvm footprint report (write one with swarmvm footprint --json)")
-    if data.get("version") != REPORT_VERSION:
-        raise InputError(path, "version", "a footprint report of version %s; this swarmvm compares with version %d "
-                         "(write the baseline again)" % (json.dumps(data.get("version")), REPORT_VERSION))
+    data = read_json_document(path, REPORT_FORMAT, REPORT_VERSION, "footprint report",
+                              "write it again with swarmvm footprint --json")
     images = data.get("images")
     if not isinstance(images, list):
         raise InputError(path, "images", "must be a list")

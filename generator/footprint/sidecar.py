@@ -20,8 +20,8 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from ..boundary.errors import InputError, decode_text, read_input
-from ..boundary.structure import check_structure
+from ..boundary.errors import InputError
+from ..boundary.structure import read_json_document
 from ..compiler.tables import Tables
 from ..readers.event_script import random_rows, script_lines
 
@@ -80,17 +80,8 @@ def _strings(path: str, key: str, value: object) -> tuple[str, ...]:
 def read_sidecar(path: str) -> Sidecar:
     """The sidecar in the file ``path``; InputError naming the file and the key for anything that
     is not a sidecar of this format version."""
-    text = decode_text(path, read_input(path, limit=MAX_BYTES))
-    check_structure(path, text)
-    try:
-        data = json.loads(text)
-    except ValueError as exc:                           # JSONDecodeError
-        raise InputError(path, "", "not a JSON file (%s): write it again with swarmvm gen" % exc)
-    if not isinstance(data, dict) or data.get("format") != FORMAT_NAME:
-        raise InputError(path, "format", "not a swarmvm footprint sidecar (swarmvm gen writes one)")
-    if data.get("version") != VERSION:
-        raise InputError(path, "version", "a sidecar of version %s; this swarmvm reads version %d (run swarmvm gen "
-                         "again)" % (json.dumps(data.get("version")), VERSION))
+    data = read_json_document(path, FORMAT_NAME, VERSION, "footprint sidecar", "write it again with swarmvm gen",
+                              limit=MAX_BYTES)
     unknown = sorted(set(data) - set(KEYS))
     if unknown:
         raise InputError(path, unknown[0], "unknown key (a sidecar has %s)" % ", ".join(KEYS))

@@ -165,7 +165,7 @@ def bad(data):
     (bad(lambda r: [1, 2]), "format", "not a swarmvm footprint report"),
     (bad(lambda r: {k: v for k, v in r.items() if k not in ("format", "version")}), "format",
      "not a swarmvm footprint report"),
-    (bad(lambda r: dict(r, version=2)), "version", "a footprint report of version 2; this swarmvm compares with version 1"),
+    (bad(lambda r: dict(r, version=2)), "version", "a footprint report of version 2; this swarmvm reads version 1"),
     (bad(lambda r: dict(r, version="1")), "version", 'a footprint report of version "1"'),
     (bad(lambda r: dict(r, images={})), "images", "must be a list"),
     (bad(lambda r: dict(r, images=[7])), "images[0]", "must be an object"),

@@ -102,7 +102,7 @@ def test_a_sidecar_not_of_the_images_build_is_refused(project, tmp_path):
     assert "robot.footprint.json: tables_sha256: " in said and "is not the digest of the table image in" in said
     elf = str(folder / "robot.elf")
     for key, value, message in (("target", "capbot", "target: a sidecar of a capbot image"),
-                                ("version", 2, "version: a sidecar of version 2"),
+                                ("version", 2, "version: a footprint sidecar of version 2"),
                                 ("indirect", ["svm_step"], "indirect[0]: 'svm_step' is not CALLER=TARGET"),
                                 ("script", "EV_atWork", "script: must be a list of strings"),
                                 ("extra", 1, "extra: unknown key")):
