@@ -59,8 +59,8 @@ import tables as published_tables  # noqa: E402  (benchmarks/published_form/tabl
 from conformance import c_harness  # noqa: E402
 from figures import add_json_option, write_figures  # noqa: E402
 from swarmvm.api import compile_model  # noqa: E402
-from swarmvm.compiler.tables import Tables  # noqa: E402
 from swarmvm.readers.event_script import random_script  # noqa: E402
+from swarmvm.targets.values import has_public_inputs  # noqa: E402
 
 RUNTIME = ROOT / "runtime_c"
 PUBLISHED_VM = ROOT / "benchmarks" / "published_form" / "published_vm.c"
@@ -345,13 +345,6 @@ class Row:
     def ratio(self, what: str) -> Optional[float]:
         a, b = getattr(self, "swarmvm_" + what), getattr(self, "published_" + what)
         return None if a is None or b is None else a / b
-
-
-def has_public_inputs(tables: Tables) -> bool:
-    """Whether the model has a public uncontrollable event: the only events the public-first pass
-    polls and applies first (a public controllable event is chosen as any other), so a model
-    without one needs no pass (``SVM_WITH_PUBLIC=0``, whose load refuses an image with one)."""
-    return bool(tables.public & ~tables.controllable)
 
 
 class Supervisor:

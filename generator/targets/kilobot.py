@@ -12,7 +12,7 @@ from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import TEMPLATES
 from .c import file_order
 from .record import Elf, Readme, RobotLimits, Target
-from .values import C_RUNTIME_GROUPS, c_copies, features, headers, minimal_features, sources
+from .values import C_RUNTIME_GROUPS, c_copies, features, has_public_inputs, headers, minimal_features, sources
 
 KILOBOT_MESSAGE_BYTES = 9     # a kilolib message_t carries 9 bytes of payload
 # 32 KB of flash minus the bootloader at 0x7000; 2 KB of SRAM, 1 KB of it left to the stack
@@ -66,7 +66,7 @@ def values(compiled: Compiled) -> dict[str, object]:
     model (:func:`~swarmvm.targets.values.minimal_features`)."""
     probabilistic = compiled.tables.probs is not None
     events = event_names(compiled.model)
-    public_inputs = any(e.public and not e.controllable for e in events)
+    public_inputs = has_public_inputs(compiled.tables)
     return dict(runtime_sources=sources("core", "kilobot"), runtime_headers=headers("core", "kilobot"),
                 stream_sources=sources("stream"), learned_sources=sources("learn"),
                 features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),

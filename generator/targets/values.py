@@ -10,6 +10,7 @@ every target that sets them. Templates only write these values out."""
 from collections.abc import Mapping
 
 from ..compiler.runtime_files import RUNTIME_C
+from ..compiler.tables import Tables
 from .record import RuntimeCopy
 
 # The C runtime's files by the part they implement, each in the order builds list them.
@@ -56,6 +57,14 @@ def sources(*groups: str) -> list[str]:
 def headers(*groups: str) -> list[str]:
     """The headers of ``groups``, by stem: what a build's rule depends on besides its sources."""
     return [name[:-len(".h")] for name in runtime_files(*groups) if name.endswith(".h")]
+
+
+def has_public_inputs(tables: Tables) -> bool:
+    """Whether the model has a public uncontrollable event: the only events the step's
+    public-first pass polls and applies first (a public controllable event is chosen as any
+    other), so a model without one needs no pass (``SVM_WITH_PUBLIC=0``, whose load refuses an
+    image with one)."""
+    return bool(tables.public & ~tables.controllable)
 
 
 def minimal_features(public_inputs: bool) -> list[tuple[str, int]]:

@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from swarmvm.api import compile_model
+from swarmvm.targets.values import has_public_inputs
 
 ROOT = Path(__file__).resolve().parents[2]
 RUNTIME = ROOT / "runtime_c"
@@ -175,7 +176,7 @@ def test_smallest_profile_steps_as_the_validating_vm(tmp_path, supervisor):
     public events are all controllable, run without it) fires the same events and reaches the
     same states at every step as the validating VM given the same options at run time; with the
     bit-clearing popcount the benchmark's builds (-Os on AVR, the Cortex-M4) use."""
-    has_public = _benchmark().has_public_inputs(compile_model([str(supervisor)], names=False).tables)
+    has_public = has_public_inputs(compile_model([str(supervisor)], names=False).tables)
     trusted_flags = ("-DSVM_TRUSTED_OPTIONS=%s" % FIXED[0],) + (() if has_public else ("-DSVM_WITH_PUBLIC=0",))
     for options in FIXED:
         flags = ("-DFIXED_OPTIONS=%s" % options, "-DSVM_WITH_VIOLATIONS=0", "-DSVM_POPCOUNT_TABLE=0")
@@ -191,7 +192,7 @@ def test_profile_without_public_pass_refuses_an_image_with_public_inputs(tmp_pat
     """hitl_leader has a public uncontrollable event (its event 0), which the public-first pass
     polls first: a build without the pass must not run it."""
     supervisor = ROOT / "tests/corpus/openswarm/hitl_leader.yaml"
-    assert _benchmark().has_public_inputs(compile_model([str(supervisor)], names=False).tables)
+    assert has_public_inputs(compile_model([str(supervisor)], names=False).tables)
     out = _host_run(tmp_path, supervisor, True, trusted_flags=("-DSVM_WITH_PUBLIC=0",))
     assert out.splitlines()[1:] == ["load %d, over the limits 1" % int(out.splitlines()[1].split()[1].rstrip(","))]
 
