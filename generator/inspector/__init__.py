@@ -1,2 +1,3 @@
-"""The inspector: canonical traces read back (``trace``) and the one offline page that replays
-them against the supervisors (``page``)."""
+"""The inspector: canonical traces read back (``trace``), the packed form of the runs a page
+holds (``encoding``), and the one offline page that replays them against the supervisors
+(``page``)."""

@@ -3,20 +3,20 @@ VMs did against the supervisors they ran.
 
 Everything is decided here, when the page is written, so the browser only displays: Graphviz
 lays out each local supervisor (swarmvm.models.pictures' DOT, names already escaped there), every
-distinct vector of states is numbered once with its enabled controllable events, each run
-becomes arrays of small integers (a vector number, a fired-events number and the violation
-counter per step), and the transitions a step takes are walked once per distinct (vector
-before, events fired) pair, every supervisor's, input by input, then the chosen event. The
-supervisors' tables go in whole too, so that the page's simulator can fire any event from any
-vector, not only those the traces reached; lanes are in natural order. The page carries its
-own script and style (templates/inspect/, package data) and a Content-Security-Policy that
-allows no fetch at all: it opens from ``file://`` offline, and the same inputs give the same
-bytes.
+distinct vector of states is numbered once with its enabled controllable events, and each run
+becomes one small integer a step, packed (swarmvm.inspector.encoding: a table of the distinct
+steps, and per run the base64 of its steps' rows), which the page decodes when it needs a run.
+The supervisors' tables go in whole too, so that the page's simulator can fire any event from any
+vector, not only those the traces reached, and so that the page walks the transitions a step
+takes (every supervisor's, input by input, then the chosen event) with the simulator's own
+firing; lanes are in natural order. The page carries its own script and style
+(templates/inspect/, package data) and a Content-Security-Policy that allows no fetch at all: it
+opens from ``file://`` offline, and the same inputs give the same bytes.
 
-Size: a page keeps at most :data:`ROBOT_STEPS` steps of all runs together (20 robots of 50,000
-steps); beyond, each run keeps the same window of steps from ``first_step`` and the page
-summarises the whole runs (length, last states, violations, events counted): another
-``--first-step`` pages through the rest."""
+Size: a page keeps at most :data:`ROBOT_STEPS` steps of all runs together (200 robots of 100,000
+steps, a page of about 54 MB); beyond, each run keeps the same window of steps from
+``first_step`` and the page summarises the whole runs (length, last states, violations, events
+counted): another ``--first-step`` pages through the rest."""
 
 import re
 from dataclasses import dataclass
@@ -29,9 +29,10 @@ from ..compiler.model import Model
 from ..compiler.runtime_files import TEMPLATES
 from ..models.pictures import dot_to_svg, supervisor_dot
 from ..models.product import Conjunction, events_of
-from .trace import Difference, Run, compare_traces, first_difference, read_trace
+from . import encoding
+from .trace import Reading, read_runs
 
-ROBOT_STEPS = 1_000_000
+ROBOT_STEPS = 20_000_000
 ASSETS = ("inspect.css", "inspect.js")
 # What Graphviz writes before the <svg> element (XML prolog, DOCTYPE, comments) and the namespace
 # attributes inline SVG does not need: gone, so the page holds no URL and no tool version.
@@ -52,81 +53,37 @@ def inline_svg(svg: bytes) -> str:
     return _SVG_NAMESPACES.sub("", text).strip()
 
 
-class _Numbering:
-    """Distinct values numbered in order of first appearance (vectors of states, fired tuples)."""
-
-    def __init__(self) -> None:
-        self.numbers: dict[tuple[int, ...], int] = {}
-
-    def __call__(self, value: tuple[int, ...]) -> int:
-        return self.numbers.setdefault(value, len(self.numbers))
-
-    def values(self) -> list[list[int]]:
-        return [list(v) for v in self.numbers]
-
-
-def _moves(model: Model, before: tuple[int, ...], fired: tuple[int, ...]) -> list[list[int]]:
-    """The transitions the events ``fired`` in one step take from the states ``before``, in firing
-    order (docs/semantics.md, steps 3 and 6): [supervisor, from, to, event] for every supervisor
-    holding the event that has a transition on it (one without keeps its state: a violation)."""
-    states, moves = list(before), []
-    for event in fired:
-        for sup, supervisor in enumerate(model.supervisors):
-            if event not in supervisor.alphabet:
-                continue
-            target = next((t for e, t, _ in supervisor.states[states[sup]] if e == event), None)
-            if target is not None:
-                moves.append([sup, states[sup], target, event])
-                states[sup] = target
-    return moves
-
-
 def natural_key(name: str) -> list[tuple[int, int, str]]:
     """A lane's sort key: runs of digits compared as numbers, so robot2 comes before robot10
     (the shell's glob order puts robot10 first)."""
     return [(1, int(part), "") if part.isdigit() else (0, 0, part) for part in re.findall(r"\d+|\D+", name)]
 
 
-def page_data(model: Model, title: str, runs: Sequence[Run], compare: bool,
-              difference: Difference | None = None) -> dict[str, object]:
-    """Everything the page's script displays, as JSON-ready lists of integers and names.
-    ``difference``: where the whole runs compared differ (:func:`compare_traces`); without it,
-    it is looked for in the steps the runs keep. Lanes are sorted by :func:`natural_key`, except
-    the two runs compared, which keep the order given (the first is drawn solid, the second dashed)."""
-    if not compare:
-        runs = sorted(runs, key=lambda run: natural_key(run.name))
-    vectors, fired_sets = _Numbering(), _Numbering()
-    fired_sets(())
-    vectors(tuple(0 for _ in model.supervisors))
-    runs_data = []
-    # A step's transitions, by "vector before,fired set" (the same pair: the same transitions).
-    moves: dict[str, list[list[int]]] = {}
-    for run in runs:
-        v = [vectors(run.start)] + [vectors(s) for s in run.states]
-        f = [0] + [fired_sets(fired) for fired in run.fired]
-        for i, fired in enumerate(run.fired, 1):
-            key = "%d,%d" % (v[i - 1], f[i])
-            if fired and key not in moves:
-                moves[key] = _moves(model, run.states[i - 2] if i > 1 else run.start, fired)
-        runs_data.append(dict(name=run.name, steps=run.steps, counts=run.counts, lastViolations=run.last_violations,
-                              last=vectors(run.last), v=v, f=f, x=[run.start_violations] + run.violations))
+def page_data(model: Model, title: str, reading: Reading, compare: bool) -> dict[str, object]:
+    """Everything the page's script displays, as JSON-ready integers, names and packed runs
+    (swarmvm.inspector.encoding). Lanes are sorted by :func:`natural_key`, except the two runs
+    compared, which keep the order given (the first is drawn solid, the second dashed)."""
+    runs = reading.runs if compare else sorted(reading.runs, key=lambda run: natural_key(run.name))
+    steps, difference = reading.steps, reading.difference
+    width = encoding.code_bytes(len(steps))
+    runs_data = [dict(name=run.name, steps=run.steps, counts=run.counts, last=run.last,
+                      lastViolations=run.last_violations, start=run.start, startViolations=run.start_violations,
+                      kept=len(run.codes), codes=encoding.pack(run.codes, width)) for run in runs]
     conjunction = Conjunction.of(model)
     # The simulator's tables: per supervisor its alphabet and, per state, its [event, target]
     # pairs, so the page can fire any event from any vector, not only those the traces reached.
     alphabets = [sorted(sup.alphabet) for sup in model.supervisors]
     tables = [[[[e, t] for e, t, _ in transitions] for transitions in sup.states] for sup in model.supervisors]
     controllable = sum(1 << e for e, c in enumerate(model.controllable) if c)
-    vector_list = vectors.values()
-    if compare and difference is None:
-        first = first_difference(runs[0], runs[1])
-        difference = Difference(first, int(first is not None), first)
+    vector_list = steps.vectors.values()
     return dict(title=title, first=runs[0].first if runs else 1, window=window(len(runs)), robotSteps=ROBOT_STEPS,
                 events=[[name, "c" if c else "u", int(p)]
                         for name, c, p in zip(model.events, model.controllable, model.public)],
                 supervisors=[len(sup.states) for sup in model.supervisors],
                 vectors=vector_list,
                 enabled=[list(events_of(conjunction.enabled(tuple(v)) & controllable)) for v in vector_list],
-                fired=fired_sets.values(), moves=moves, runs=runs_data, compare=compare,
+                fired=steps.fired.values(), table=[list(row) for row in zip(steps.vector, steps.events, steps.added)],
+                codeBytes=width, runs=runs_data, compare=compare,
                 source=model.source, alphabets=alphabets, tables=tables,
                 difference=difference.first if difference else None,
                 differences=difference.steps if difference else 0,
@@ -147,9 +104,8 @@ def _drawings(model: Model, title: str) -> str:
     return "\n".join(figures)
 
 
-def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool,
-              difference: Difference | None = None) -> bytes:
-    """The whole page, as UTF-8 bytes (``difference``: :func:`page_data`)."""
+def page_html(model: Model, title: str, reading: Reading, compare: bool) -> bytes:
+    """The whole page, as UTF-8 bytes."""
     head = ('<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
             '<meta http-equiv="Content-Security-Policy" content="%s">\n'
             '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
@@ -157,7 +113,7 @@ def page_html(model: Model, title: str, runs: Sequence[Run], compare: bool,
             % (_CSP, html(title), asset("inspect.css")))
     body = (BODY % dict(title=html(title), drawings=_drawings(model, title))
             + '<script id="data" type="application/json">%s</script>\n<script>\n%s</script>\n</body>\n</html>\n'
-            % (script_json(page_data(model, title, runs, compare, difference)), asset("inspect.js")))
+            % (script_json(page_data(model, title, reading, compare)), asset("inspect.js")))
     return (head + body).encode("utf-8")
 
 
@@ -208,6 +164,8 @@ title="an event (EV_x): the steps where it fires; a state (supervisor=qN): the s
 <tr><td><kbd>v</kbd> <kbd>V</kbd></td><td>next / previous violation (likewise)</td></tr>
 <tr><td><kbd>d</kbd> <kbd>D</kbd></td><td>next / previous difference of the two runs compared, among the steps kept</td></tr>
 <tr><td><kbd>z</kbd> <kbd>Z</kbd></td><td>zoom the timeline in / out around the step shown (or Ctrl+wheel over it; drag to pan)</td></tr>
+<tr><td><kbd>m</kbd></td><td>mark the step shown, or unmark it (the marks are kept in the page's address)</td></tr>
+<tr><td><kbd>.</kbd> <kbd>,</kbd></td><td>next / previous mark</td></tr>
 <tr><td><kbd>g</kbd> <kbd>/</kbd></td><td>the go-to-step box / the find box (<kbd>Esc</kbd>: back to these keys)</td></tr>
 <tr><td><kbd>n</kbd></td><td>simulator: end the step with the VM's choice</td></tr>
 <tr><td><kbd>u</kbd></td><td>simulator: undo the last event fired</td></tr>
@@ -216,7 +174,10 @@ title="an event (EV_x): the steps where it fires; a state (supervisor=qN): the s
 </details>
 <section id="lanes"><h2>Robots</h2>
 <div id="zoom"><button id="zoomIn" title="zoom in (z)">zoom in</button><button id="zoomOut" title="zoom out (Z)">zoom out</button>
-<button id="zoomAll" title="the whole window of steps">all steps</button> <span id="zoomLabel"></span></div>
+<button id="zoomAll" title="the whole window of steps">all steps</button> <span id="zoomLabel"></span>
+<button id="mark" title="mark the step shown, or unmark it (m)">mark</button>
+<button id="prevMark" title="previous mark (,)">previous mark</button><button id="nextMark" title="next mark (.)">next mark</button>
+<span id="markList"></span></div>
 <div id="laneBox"><div id="laneNames"></div><canvas id="timeline" width="1000" height="40"></canvas></div>
 <div id="chartBox"><label>robots per state of <select id="chartSup"></select></label>
 <canvas id="chart" width="1000" height="80"></canvas>
@@ -264,11 +225,8 @@ def write_page(model: Model, title: str, traces: Sequence[str], output: str, com
                first_step: int) -> Inspection:
     """Read every trace (InputError at the first bad line, before anything is written), then
     write the page to ``output`` atomically."""
-    difference = None
-    if compare and len(traces) == 2:
-        runs, difference = compare_traces((traces[0], traces[1]), model, first_step, window(len(traces)))
-    else:
-        runs = [read_trace(path, model, first_step, window(len(traces))) for path in traces]
+    reading = read_runs(traces, model, first_step, window(len(traces)), compare and len(traces) == 2)
     target = Path(output).absolute()
-    written = write_outputs(target.parent, {target.name: (page_html(model, title, runs, compare, difference), False)})
-    return Inspection(written[0], sum(len(r.fired) for r in runs), sum(max(0, r.steps - r.first + 1) for r in runs))
+    written = write_outputs(target.parent, {target.name: (page_html(model, title, reading, compare), False)})
+    runs = reading.runs
+    return Inspection(written[0], sum(len(r.codes) for r in runs), sum(max(0, r.steps - r.first + 1) for r in runs))

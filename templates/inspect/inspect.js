@@ -6,7 +6,7 @@
   var D = JSON.parse(document.getElementById("data").textContent);
   var runs = D.runs, events = D.events, nSup = D.supervisors.length;
   var last = 0;
-  runs.forEach(function (r) { last = Math.max(last, r.v.length - 1); });
+  runs.forEach(function (r) { last = Math.max(last, r.kept); });
   var view = { i: 0, robot: 0, timer: null };
   var $ = function (id) { return document.getElementById(id); };
   var firedHas = D.fired.map(function (set) {
@@ -15,19 +15,55 @@
     return has;
   });
 
-  function at(run, i) { return Math.min(i, run.v.length - 1); }
-  function vectorOf(run, i) { return run ? D.vectors[run.v[at(run, i)]] : D.vectors[0]; }
+  // The runs' steps, packed (swarmvm.inspector.encoding): a run is one code a step, a row of
+  // D.table ([vector, fired, violations added]), in base64. A run's codes are decoded into a
+  // typed array when the run is first needed (its lane drawn, a step of it shown), its violation
+  // counters summed when first asked; a step's states and events are looked up in the table.
+  // Index 0 of a run is the state before its first step kept; index i, step D.first + i - 1.
+  var rowVector = Int32Array.from(D.table, function (row) { return row[0]; });
+  var rowFired = Int32Array.from(D.table, function (row) { return row[1]; });
+  var rowAdded = Int32Array.from(D.table, function (row) { return row[2]; });
+  function codesOf(run) {
+    if (!run.decoded) {
+      var text = atob(run.codes), bytes = new Uint8Array(text.length);
+      for (var n = 0; n < text.length; n++) bytes[n] = text.charCodeAt(n);
+      run.decoded = D.codeBytes === 2 ? new Uint16Array(bytes.buffer) : new Uint32Array(bytes.buffer);
+    }
+    return run.decoded;
+  }
+  function vectorId(run, i) { return i ? rowVector[codesOf(run)[i - 1]] : run.start; }
+  function firedId(run, i) { return i ? rowFired[codesOf(run)[i - 1]] : 0; }
+  function violationsAt(run, i) {
+    if (!run.counters) {
+      var codes = codesOf(run), x = new Float64Array(codes.length + 1);
+      x[0] = run.startViolations;
+      for (var n = 0; n < codes.length; n++) x[n + 1] = x[n] + rowAdded[codes[n]];
+      run.counters = x;
+    }
+    return run.counters[i];
+  }
+
+  function at(run, i) { return Math.min(i, run.kept); }
+  function vectorOf(run, i) { return run ? D.vectors[vectorId(run, at(run, i))] : D.vectors[0]; }
   function stepNumber(i) { return D.first - 1 + i; }
   function occurred(run, i, event) {       // did anything of interest happen in run at index i?
-    if (i < 1 || i >= run.v.length) return false;
-    if (event === "violation") return run.x[i] > run.x[i - 1];
-    return event < 0 ? D.fired[run.f[i]].length > 0 : !!firedHas[run.f[i]][event];
+    if (i < 1 || i > run.kept) return false;
+    if (event === "violation") return rowAdded[codesOf(run)[i - 1]] > 0;
+    var fired = firedId(run, i);
+    return event < 0 ? D.fired[fired].length > 0 : !!firedHas[fired][event];
   }
   // The transitions taken in step i of run (every supervisor's, input by input, then the chosen
-  // event's): [supervisor, from, to, event], as page.py walked them.
+  // event's): [supervisor, from, to, event], the step's events fired again from the states
+  // before it, as the simulator fires them (fireOn).
   function movesOf(run, i) {
-    if (!run || i < 1 || i >= run.v.length) return [];
-    return D.moves[run.v[i - 1] + "," + run.f[i]] || [];
+    if (!run || i < 1 || i > run.kept) return [];
+    var states = vectorOf(run, i - 1), moves = [];
+    D.fired[firedId(run, i)].forEach(function (e) {
+      var result = fireOn(states, e);
+      moves = moves.concat(result.moves);
+      states = result.states;
+    });
+    return moves;
   }
   // The supervisors' tables (page.py: D.alphabets, D.tables), for the simulator and for the
   // refusals at a violation: firing an event from any vector, as docs/semantics.md says.
@@ -110,9 +146,13 @@
     });
     var svg = fig.querySelector("svg"), f = { fig: fig, nodes: nodes, edges: edges, counts: counts,
       where: fig.querySelector(".where"), svg: svg, start: start, scale: null, framed: "",
-      whole: [svg.getAttribute("viewBox"), svg.getAttribute("width"), svg.getAttribute("height")] };
-    var caption = fig.querySelector("figcaption");
-    [["\u2212", "zoom out", 1 / 1.5], ["+", "zoom in (or Ctrl+wheel; drag to pan)", 1.5], ["fit", "fit the width", 0]]
+      whole: [svg.getAttribute("viewBox"), svg.getAttribute("width"), svg.getAttribute("height")],
+      font: parseFloat((svg.querySelector("text") || svg).getAttribute("font-size")) || 14, followed: "",
+      caption: fig.querySelector("figcaption") };
+    readable(f);
+    var caption = f.caption;
+    [["\u2212", "zoom out", 1 / 1.5], ["+", "zoom in (or Ctrl+wheel; drag to pan)", 1.5],
+      ["fit", "fit the width (never below readable labels: a wider drawing pans)", 0]]
       .forEach(function (b) {
         var button = el("button", b[0], "zoomSup");
         button.title = b[1];
@@ -144,6 +184,29 @@
     else f.scale = (f.scale || f.svg.getBoundingClientRect().width / points) * factor;
     f.svg.style.maxWidth = f.scale ? "none" : "";
     f.svg.style.width = f.scale ? Math.round(points * f.scale) + "px" : "";
+    readable(f);
+  }
+  // Fitted (f.scale null), a drawing is never narrower than its labels can be read at 11
+  // pixels: one wider than its box (a phone's width, a large supervisor) keeps that scale and
+  // pans in its box instead of shrinking to a third. f.font: the labels' size in the drawing's
+  // units (Graphviz' points, the viewBox's).
+  function readable(f) {
+    var pixels = 11;
+    f.svg.style.minWidth = f.scale ? "" : (f.svg.viewBox.baseVal.width * pixels / f.font).toFixed(1) + "px";
+  }
+  // A drawing larger than its box: when the state highlighted changes and is out of the box's
+  // view, the box scrolls to put it in the middle (the user's own panning is left alone).
+  function keepInView(f) {
+    var g = f.svg.querySelector("g.node.cur"), fig = f.fig, key = g ? g.querySelector("title").textContent : "";
+    if (key === f.followed) return;
+    f.followed = key;
+    if (!g || (fig.scrollWidth <= fig.clientWidth && fig.scrollHeight <= fig.clientHeight)) return;
+    // The state's circle (not its count) in the box's client area, under the caption that stays on top.
+    var b = g.querySelector("ellipse").getBoundingClientRect(), r = fig.getBoundingClientRect();
+    var left = b.left - r.left - fig.clientLeft, top = b.top - r.top - fig.clientTop, above = f.caption.offsetHeight;
+    if (left >= 0 && left + b.width <= fig.clientWidth && top >= above && top + b.height <= fig.clientHeight) return;
+    fig.scrollLeft += left + b.width / 2 - fig.clientWidth / 2;
+    fig.scrollTop += top + b.height / 2 - (above + fig.clientHeight) / 2;
   }
   // The neighbourhood of the current states to a depth (the #depth list; -1: every state): the
   // states within that many transitions of one highlighted, either way, with the transitions
@@ -171,7 +234,7 @@
     f.svg.setAttribute("width", f.whole[1]);
     f.svg.setAttribute("height", f.whole[2]);
     if (depth >= 0) frame(f, near);
-    if (f.scale) zoomFigure(f, 1);
+    zoomFigure(f, f.scale ? 1 : 0);
   }
   function frame(f, near) {               // the viewBox around the states kept, their edges and labels
     var box = f.svg.viewBox.baseVal, r = f.svg.getBoundingClientRect();
@@ -232,18 +295,20 @@
       });
       neighbourhood(f, here.map(Number), +$("depth").value);
     });
+    figures.forEach(keepInView);            // after every drawing changed: one layout for all
   }
 
   function panel(k) {
     var run = runs[k], i = at(run, view.i), box = el("div", undefined, "panel");
-    var fired = i > 0 && view.i < run.v.length ? D.fired[run.f[i]] : [];
-    box.appendChild(el("h3", run.name + (view.i >= run.v.length ? " (ended)" : "")));
+    var fired = i > 0 && view.i <= run.kept ? D.fired[firedId(run, i)] : [];
+    box.appendChild(el("h3", run.name + (view.i > run.kept ? " (ended)" : "")));
     var rows = [
       ["states", vectorOf(run, i).join(",")],
       ["inputs", fired.filter(function (e) { return events[e][1] === "u"; })],
       ["chosen", fired.filter(function (e) { return events[e][1] === "c"; })],
-      ["enabled", D.enabled[run.v[i]]],
-      ["violations", run.x[i] + (occurred(run, i, "violation") ? " (+" + (run.x[i] - run.x[i - 1]) + " here)" : "")]];
+      ["enabled", D.enabled[vectorId(run, i)]],
+      ["violations", violationsAt(run, i) + (occurred(run, i, "violation") ? " (+" +
+        (violationsAt(run, i) - violationsAt(run, i - 1)) + " here)" : "")]];
     if (occurred(run, i, "violation")) rows.push(["refused", refusals(vectorOf(run, i - 1), fired)]);
     var table = el("table");
     rows.forEach(function (row) {
@@ -274,9 +339,9 @@
   }
 
   function line(run, i) {
-    if (i === 0) return (D.first === 1 ? "reset " : "before ") + vectorOf(run, 0).join(",") + " " + run.x[0];
-    var names = D.fired[run.f[i]].map(function (e) { return "EV_" + events[e][0]; });
-    return stepNumber(i) + " " + (names.join(",") || "-") + " " + vectorOf(run, i).join(",") + " " + run.x[i];
+    if (i === 0) return (D.first === 1 ? "reset " : "before ") + vectorOf(run, 0).join(",") + " " + violationsAt(run, 0);
+    var names = D.fired[firedId(run, i)].map(function (e) { return "EV_" + events[e][0]; });
+    return stepNumber(i) + " " + (names.join(",") || "-") + " " + vectorOf(run, i).join(",") + " " + violationsAt(run, i);
   }
 
   function logSteps() {
@@ -284,10 +349,20 @@
     var steps = [], i;
     var wanted = function (j) { return !filter || occurred(run, j, event); };
     for (i = view.i - 1; i >= 0 && steps.length < 8; i--) if (wanted(i)) steps.unshift(i);
-    for (i = view.i; i < run.v.length && steps.length < 17; i++) if (wanted(i)) steps.push(i);
+    for (i = view.i; i <= run.kept && steps.length < 17; i++) if (wanted(i)) steps.push(i);
     return steps;
   }
 
+  // A trace line as a cell that may wrap after each comma (a <wbr>, no text of its own), so that
+  // a narrow column (a phone's, two runs side by side) breaks a list of events between two.
+  function lineCell(text) {
+    var td = el("td");
+    text.split(",").forEach(function (part, n) {
+      if (n) { td.appendChild(document.createTextNode(",")); td.appendChild(el("wbr")); }
+      td.appendChild(document.createTextNode(part));
+    });
+    return td;
+  }
   function drawLog() {
     var table = $("logTable");
     table.textContent = "";
@@ -299,10 +374,10 @@
     logSteps().forEach(function (i) {
       var tr = el("tr"), a = line(runs[D.compare ? 0 : view.robot], i);
       tr.appendChild(el("td", String(i)));
-      tr.appendChild(el("td", a));
+      tr.appendChild(lineCell(a));
       if (D.compare) {
-        var b = i < runs[1].v.length ? line(runs[1], i) : "(ended)";
-        tr.appendChild(el("td", b));
+        var b = i <= runs[1].kept ? line(runs[1], i) : "(ended)";
+        tr.appendChild(lineCell(b));
         if (a !== b) tr.classList.add("differs");
       }
       if (i === view.i) tr.classList.add("here");
@@ -345,7 +420,7 @@
       // The trace's steps up to i: their inputs are the script's first rows, and the generator
       // drew once in each whose choice had two or more candidates.
       for (var j = 1; j <= i; j++) {
-        var states = vectorOf(run, j - 1), fired = D.fired[run.f[j]], chose = false;
+        var states = vectorOf(run, j - 1), fired = D.fired[firedId(run, j)], chose = false;
         for (var n = 0; n < fired.length; n++) {
           if (events[fired[n]][1] === "u") states = fireOn(states, fired[n]).states; else chose = true;
         }
@@ -353,7 +428,7 @@
         rows.push(inputsOf(fired));
       }
     }
-    var first = { states: vectorOf(run, i).slice(), x: run ? run.x[i] : 0, step: run ? stepNumber(i) : 0, rng: rng,
+    var first = { states: vectorOf(run, i).slice(), x: run ? violationsAt(run, i) : 0, step: run ? stepNumber(i) : 0, rng: rng,
       fired: [], moves: [], rows: rows, lines: [], offVM: [] };
     sim = { robot: run ? view.robot : 0, known: known, first: first, now: first, history: [],
       from: run ? (i ? "step " + stepNumber(i) : D.first === 1 ? "the reset" : "before step " + D.first) + " of " +
@@ -497,8 +572,8 @@
   var COLOURS = [null, "#90a4ae", "#1565c0", "#2e7d32", "#c62828", "#ad1457"];
   function lineDiffers(i) {
     var a = runs[0], b = runs[1];
-    if (i >= a.v.length || i >= b.v.length) return true;
-    return a.v[i] !== b.v[i] || a.f[i] !== b.f[i] || a.x[i] !== b.x[i];
+    if (i > a.kept || i > b.kept) return true;
+    return vectorId(a, i) !== vectorId(b, i) || firedId(a, i) !== firedId(b, i) || violationsAt(a, i) !== violationsAt(b, i);
   }
   var differs = [];                                   // comparing: per index, do the two lines differ?
   for (var d = 0; D.compare && d <= last; d++) differs.push(d > 0 && lineDiffers(d));
@@ -530,7 +605,10 @@
       p = q;
     }
   }
+  // A lane's height: its name's (CSS --lane: taller on a phone, where a finger taps it).
+  function laneHeight() { return parseFloat(getComputedStyle($("laneBox")).getPropertyValue("--lane")) || 14; }
   function drawLanes() {
+    lane = laneHeight();
     var lanes = Math.max(1, runs.length + (D.compare ? 1 : 0)), event = +$("event").value;
     canvas.width = Math.max(200, Math.floor(canvas.clientWidth) || 1000);
     canvas.height = lanes * lane + 4;
@@ -538,9 +616,10 @@
     ctx.fillStyle = "#fff";
     ctx.fillRect(0, 0, canvas.width, canvas.height);
     runs.forEach(function (run, k) {
-      paintLane(k * lane + 2, run.v.length, function (i) { return priority(run, i, event); });
+      paintLane(k * lane + 2, run.kept + 1, function (i) { return priority(run, i, event); });
     });
     if (D.compare) paintLane(runs.length * lane + 2, last + 1, function (i) { return differs[i] ? 5 : 0; });
+    paintMarks();
     strip = ctx.getImageData(0, 0, canvas.width, canvas.height);
     $("zoomLabel").textContent = runs.length ? "steps " + stepNumber(Math.max(0, Math.ceil(range.from))) + " to " +
       stepNumber(Math.min(last, Math.floor(range.from + range.span))) + " of " + stepNumber(last) : "";
@@ -622,6 +701,61 @@
     $("chartNow").textContent = (view.i ? "step " + stepNumber(view.i) : "step 0") + ": " + said.join(", ");
   }
 
+  // Marks (docs/inspect.md, "The timeline"): steps the user marks with m or the mark button,
+  // drawn on the timeline (a purple line over the lanes, a flag on top), listed beside its
+  // buttons, visited with . and , (next / previous), and kept in the page's address
+  // (#step=N&robot=R&marks=12,40) so that a link shares them. Step numbers as the traces number
+  // them, sorted; a mark outside the steps this page keeps stays in the address, not drawn.
+  var stepMarks = [], marksListed = null;
+  function parseMarks(text) {
+    var seen = {};
+    text.split(",").forEach(function (n) { if (/^\d+$/.test(n)) seen[+n] = true; });
+    return Object.keys(seen).map(Number).sort(function (a, b) { return a - b; });
+  }
+  function inWindow(n) { return n - D.first + 1 >= 0 && n - D.first + 1 <= last; }
+  function toggleMark() {
+    var n = stepNumber(view.i), k = stepMarks.indexOf(n);
+    if (k >= 0) stepMarks.splice(k, 1); else stepMarks = parseMarks(stepMarks.concat([n]).join(","));
+    drawLanes();
+    render();
+  }
+  function seekMark(direction) {
+    var now = stepNumber(view.i), list = stepMarks.filter(inWindow);
+    if (direction < 0) list.reverse();
+    var to = list.find(function (n) { return direction > 0 ? n > now : n < now; });
+    if (to === undefined) $("status").textContent = "no " + (direction > 0 ? "next" : "previous") + " mark";
+    else go(to - D.first + 1);
+  }
+  function paintMarks() {
+    ctx.fillStyle = "#6a1b9a";
+    stepMarks.forEach(function (n) {
+      var x = Math.round(xOf(n - D.first + 1));
+      if (!inWindow(n) || x < 0 || x > canvas.width) return;
+      x = Math.min(x, canvas.width - 2);
+      ctx.fillRect(x, 0, 2, canvas.height);
+      ctx.beginPath();
+      ctx.moveTo(x + 2, 0);
+      ctx.lineTo(x + 9, 4);
+      ctx.lineTo(x + 2, 8);
+      ctx.fill();
+    });
+  }
+  function drawMarks() {                   // the mark button says what it does here; the list, when changed
+    var here = stepMarks.indexOf(stepNumber(view.i)) >= 0, list = $("markList");
+    $("mark").textContent = here ? "unmark" : "mark";
+    $("mark").classList.toggle("marked", here);
+    if (stepMarks.join(",") === marksListed) return;
+    marksListed = stepMarks.join(",");
+    list.textContent = "";
+    stepMarks.forEach(function (n) {
+      var button = el("button", String(n));
+      button.disabled = !inWindow(n);
+      button.title = inWindow(n) ? "go to step " + n : "step " + n + " is not among the steps this page keeps";
+      button.addEventListener("click", function () { go(n - D.first + 1); });
+      list.appendChild(button);
+    });
+  }
+
   function render() {
     $("slider").value = String(view.i);
     $("stepLabel").textContent = view.i === 0 ? (D.first === 1 ? "reset" : "before step " + D.first) :
@@ -638,6 +772,7 @@
     drawSim();
     drawCursor();
     drawChartNow();
+    drawMarks();
     document.querySelectorAll("#laneNames span").forEach(function (s, k) {
       s.classList.toggle("selected", k === view.robot);
     });
@@ -646,7 +781,8 @@
   }
   var hashTimer = null;
   function writeHash() {
-    var hash = "#step=" + stepNumber(view.i) + (runs.length ? "&robot=" + encodeURIComponent(runs[view.robot].name) : "");
+    var hash = "#step=" + stepNumber(view.i) + (runs.length ? "&robot=" + encodeURIComponent(runs[view.robot].name) : "") +
+      (stepMarks.length ? "&marks=" + stepMarks.join(",") : "");
     if (location.hash !== hash) history.replaceState(null, "", hash);
   }
 
@@ -716,7 +852,7 @@
       var s = +m[1], q = +m[2];
       if (s >= nSup || q >= D.supervisors[s]) return null;
       return { name: "supervisor " + s + " entering q" + q, test: function (run, i) {
-        return i >= 1 && i < run.v.length && vectorOf(run, i)[s] === q && vectorOf(run, i - 1)[s] !== q; } };
+        return i >= 1 && i <= run.kept && vectorOf(run, i)[s] === q && vectorOf(run, i - 1)[s] !== q; } };
     }
     var name = text.trim().replace(/^EV_/, ""), e = events.findIndex(function (ev) { return ev[0] === name; });
     return e < 0 ? null : matcher(e);
@@ -739,12 +875,13 @@
       if (k < 0 && /^\d+$/.test(fields.robot) && +fields.robot < runs.length) k = +fields.robot;
       if (k >= 0) view.robot = k;
     }
+    stepMarks = parseMarks(fields.marks || "");
     if (/^\d+$/.test(fields.step || "")) view.i = Math.max(0, Math.min(last, +fields.step - D.first + 1));
   }
 
   // The static parts: summary, event list, lanes' names, whole runs.
   var total = runs.reduce(function (n, r) { return n + r.steps; }, 0);
-  var kept = runs.reduce(function (n, r) { return n + r.v.length - 1; }, 0);
+  var kept = runs.reduce(function (n, r) { return n + r.kept; }, 0);
   var summary = nSup + " supervisors, " + events.length + " events, " + runs.length + " trace" +
     (runs.length === 1 ? "" : "s") + "; steps " + (last ? D.first + " to " + stepNumber(last) : "none") + " shown";
   if (kept < total) {
@@ -813,6 +950,9 @@
   $("zoomIn").addEventListener("click", function () { zoom(1 / 2, view.i); });
   $("zoomOut").addEventListener("click", function () { zoom(2, view.i); });
   $("zoomAll").addEventListener("click", function () { range.from = 0; zoom(last / range.span, 0); });
+  $("mark").addEventListener("click", toggleMark);
+  $("prevMark").addEventListener("click", function () { seekMark(-1); });
+  $("nextMark").addEventListener("click", function () { seekMark(1); });
   $("goto").addEventListener("keydown", function (e) { if (e.key === "Enter") { goToStep(); $("goto").blur(); } });
   $("find").addEventListener("keydown", function (e) { if (e.key === "Enter") find(e.shiftKey ? -1 : 1); });
   $("findNext").addEventListener("click", function () { find(1); });
@@ -858,7 +998,7 @@
     zoom(e.deltaY > 0 ? 1.5 : 1 / 1.5, indexAt((e.clientX - box.left) / box.width));
   }, { passive: false });
   window.addEventListener("resize", function () { drawLanes(); drawCursor(); });
-  window.addEventListener("hashchange", function () { leaveSim(); fromHash(); render(); });
+  window.addEventListener("hashchange", function () { leaveSim(); fromHash(); drawLanes(); render(); });
   var keys = {
     ArrowRight: function (e) { go(view.i + (e.shiftKey ? 10 : 1)); },
     ArrowLeft: function (e) { go(view.i - (e.shiftKey ? 10 : 1)); },
@@ -880,7 +1020,10 @@
     g: function () { $("goto").focus(); $("goto").select(); },     // what is typed replaces what was there
     "/": function () { $("find").focus(); $("find").select(); },
     n: simStep,
-    u: simUndo
+    u: simUndo,
+    m: toggleMark,
+    ".": function () { seekMark(1); },
+    ",": function () { seekMark(-1); }
   };
   document.addEventListener("keydown", function (e) {
     var action = keys[e.key], target = e.target;

@@ -7,6 +7,7 @@ import re
 from pathlib import Path
 
 from swarmvm import api
+from swarmvm.inspector.encoding import decode
 
 DATA = re.compile(r'<script id="data" type="application/json">(.*?)</script>', re.S)
 
@@ -22,7 +23,7 @@ def inspected_states(supervisor, traces: dict, folder: Path) -> dict:
     data = json.loads(DATA.search(Path(page.path).read_text()).group(1))
     lanes = {Path(lane["name"]).name.removesuffix(".trace"): lane for lane in data["runs"]}   # in natural order
     assert sorted(lanes) == sorted(traces)
-    return {run: [data["vectors"][v] for v in lanes[run]["v"][1:]] for run in traces}
+    return {run: [states for states, _fired, _violations in decode(data, lanes[run])[1:]] for run in traces}
 
 
 def states_of(traces: dict) -> dict:

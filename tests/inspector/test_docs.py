@@ -10,6 +10,7 @@ import subprocess
 import time
 
 from inspect_cases import ROOT, SCREENSHOTS, trace_lines
+from swarmvm.inspector.encoding import decode
 
 DOC = ROOT / "docs" / "inspect.md"
 
@@ -35,7 +36,8 @@ def test_the_commands_of_docs_inspect_run(tmp_path):
         assert run.returncode == 0, (command, run.stderr)
     report, compare = page_data(tmp_path / "report.html"), page_data(tmp_path / "compare.html")
     assert [r["name"] for r in report["runs"]] == ["robot1.trace", "robot2.trace"]
-    assert [len(r["v"]) for r in report["runs"]] == [501, 501] and len(trace_lines(tmp_path / "robot1.trace")) == 500
+    assert [len(decode(report, r)) for r in report["runs"]] == [501, 501]      # the reset, then every step
+    assert len(trace_lines(tmp_path / "robot1.trace")) == 500
     assert compare["compare"] is True and compare["difference"] == 1
 
 
