@@ -1,19 +1,21 @@
 """swarmvm's minimal profile beside the published VM (Nadzoru's generic C VM), per corpus
-supervisor and per toolchain: flash, RAM and, on the ATmega328P, cycles per step, with the
-three ratios swarmvm / published (issue 35, point 4).
+supervisor and per toolchain: flash, RAM and the cost of a step (cycles on the ATmega328P,
+instructions on the Cortex-M4F), with the three ratios swarmvm / published (issue 35, point 4).
 
 Why a benchmark of its own: the footprint report (`make footprint`) measures swarmvm's images as
 its targets build them; this compares the smallest VM a compiled-in program can have with the
 VM a team would otherwise take, built side by side from the same supervisor with the same
 compiler and flags, so that the ratio says which of the two is smaller and by how much.
 
-Each side is a program of its own: the VM, its tables, and a small main that loads the tables
-and steps, calling the same trivial checks and actions.
+Each side is a program of its own (benchmarks/published_form/side_by_side.py): the VM, its
+tables, and a small main that loads the tables and steps, calling the same trivial checks and
+actions.
 
 - published: benchmarks/published_form/published_vm.c with the supervisor's tables in the
-  published form (benchmarks/published_form/tables.py), the events in the file's order; its
-  draw from the application's generator (``-DSCT_RANDOM=app_random``, as the Kilobot program
-  draws from kilolib's ``rand_soft``), so no C library generator is counted on its side;
+  published form (benchmarks/published_form/tables.py), its events numbered in swarmvm's input
+  order (below); its draw from the application's generator (``-DSCT_RANDOM=app_random``, as
+  the Kilobot program draws from kilolib's ``rand_soft``), so no C library generator is counted
+  on its side;
 - swarmvm: runtime_c/swarmvm.c in its minimal profile (``SVM_TRUSTED_IMAGE``, every
   ``SVM_WITH_*`` feature 0 -- the violation counter too, and the public-first pass when the model
   has no public uncontrollable event --, the model's exact limits, the options fixed at build with
@@ -31,14 +33,25 @@ format) minus that of an empty program (``main`` looping) built with the same fl
 sizes of the application's own symbols (``main`` and every ``app_*`` symbol, from ``nm -S``):
 what remains is the VM's code, its tables and whatever of the C library, libgcc and start-up
 code they pull in. RAM is data + bss counted the same way (the swarmvm VM instance, ``vm``,
-is the VM's). Cycles per step: simavr's ATmega328P at 8 MHz, Timer1 at prescaler 1 read around
-each step (calibrated so that an empty measurement reads 0), STEPS steps of one random script
-(density 0.25, the uncontrollable events given by name, so both VMs see the same inputs),
-callbacks included; mean and worst. The Cortex-M4's are not measured here (QEMU counts
-instructions, not cycles: benchmarks/m4_cycles.py).
+is the VM's).
+
+The cost of a step: both programs step over one random script of STEPS steps (density 0.25,
+the uncontrollable events given by name, so both VMs see the same inputs), each step timed,
+callbacks included; mean and worst, timed by the conformance harness's platform files, linked
+as they are, as benchmarks/avr_cycles.py and benchmarks/m4_cycles.py time their steps. On the
+ATmega328P, cycles: simavr at 8 MHz, Timer1 at prescaler 1 (firmware/harness/platform_avr.c).
+On the Cortex-M4F, instructions, not cycles: QEMU (mps2-an386) does not model the M4's timing,
+so it runs with ``-icount`` and SysTick counts instructions (firmware/capbot/platform_qemu.c,
+built and run by tests/conformance/qemu_harness.py). Both VMs take the same transitions, and the run checks it: the Python
+reference VM runs the script first (benchmarks/published_form/same_steps.py); the published
+side's generator replays where among the enabled events swarmvm's generator chose, and its
+events are numbered in swarmvm's input order, so that it applies simultaneous inputs in the
+same order; each program prints the number of events it fired and their digest, and a run
+whose figures differ from the other VM's or from the reference's fails.
 
 Fails closed: a missing compiler or simulator, a build that fails, an output that cannot be
-read or a step too long for the 16-bit timer ends the run with status 1 and the reason."""
+read, a step too long for the 16-bit timer or two VMs that did not take the same transitions
+end the run with status 1 and the reason."""
 
 import argparse
 import re
@@ -55,8 +68,11 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks" / "published_form"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
+import nadzoru_c_form  # noqa: E402  (tests/nadzoru_c_form.py: the published form's reader of a supervisor.yaml)
+import same_steps  # noqa: E402  (benchmarks/published_form/same_steps.py)
+import side_by_side  # noqa: E402  (benchmarks/published_form/side_by_side.py)
 import tables as published_tables  # noqa: E402  (benchmarks/published_form/tables.py)
-from conformance import c_harness  # noqa: E402
+from conformance import c_harness, qemu_harness  # noqa: E402
 from figures import add_json_option, write_figures  # noqa: E402
 from swarmvm.api import compile_model  # noqa: E402
 from swarmvm.readers.event_script import random_script  # noqa: E402
@@ -64,11 +80,22 @@ from swarmvm.targets.values import has_public_inputs  # noqa: E402
 
 RUNTIME = ROOT / "runtime_c"
 PUBLISHED_VM = ROOT / "benchmarks" / "published_form" / "published_vm.c"
+# The step timers (and output) of the conformance harness, which benchmarks/avr_cycles.py and
+# benchmarks/m4_cycles.py read, and their header.
+PLATFORM_AVR = ROOT / "firmware" / "harness" / "platform_avr.c"
+PLATFORM_QEMU = ROOT / "firmware" / "capbot" / "platform_qemu.c"
+HARNESS = ROOT / "firmware" / "harness"
 CORPUS = sorted((ROOT / "tests" / "corpus").glob("*/*.yaml"))
 STEPS = 500
 SEED = 7
 DENSITY = 0.25
 SIMAVR_TIMEOUT = 120
+# The published VM's input rule, which both VMs run (the reference's names and swarmvm's bits:
+# SVM_INPUTS_EDGE | SVM_CONTROL_AFTER_INPUTS | SVM_POLICY_UNIFORM), and swarmvm's seed.
+RULE = ("edge", "after-inputs", "uniform")
+OPTIONS = "0x01u"
+VM_SEED = 1
+UNITS = {"avr": "cycles", "arm": "instructions"}
 
 # Today's compiled-in Kilobot build (templates/kilobot/Makefile.j2's image settings), which checks
 # the image at load: --validating builds it instead of the profile, for the figures before it.
@@ -77,9 +104,8 @@ COMMON = ["-std=c99", "-Wall", "-Wextra", "-Os", "-ffunction-sections", "-fdata-
 # The features a compiled-in Kilobot program does not use, off (both swarmvm builds).
 FEATURES = ["-DSVM_WITH_BINDINGS=0", "-DSVM_WITH_NAMES=0", "-DSVM_WITH_FIRST=0", "-DSVM_WITH_WEIGHTED=0",
             "-DSVM_WITH_LEARNED=0"]
-# The options the benchmark runs (the published VM's input rule), and swarmvm's minimal profile:
-# the image trusted, the options fixed at build, no violation counter (the program reads none).
-OPTIONS = "0x01u"   # SVM_INPUTS_EDGE | SVM_CONTROL_AFTER_INPUTS | SVM_POLICY_UNIFORM
+# swarmvm's minimal profile: the image trusted, the options fixed at build, no violation counter
+# (the program reads none).
 PROFILE = ["-DSVM_TRUSTED_IMAGE=bench_image", *FEATURES, "-DSVM_WITH_VIOLATIONS=0",
            "-DSVM_TRUSTED_OPTIONS=" + OPTIONS]
 # Added to the profile for a model without public uncontrollable events: the step has no
@@ -120,136 +146,6 @@ def require(*tools: str) -> None:
     missing = [t for t in tools if shutil.which(t) is None]
     if missing:
         raise Unmeasurable("not on the PATH: %s (make setup installs them)" % ", ".join(missing))
-
-
-# ---- the programs --------------------------------------------------------------------------
-
-# What both programs share: the inputs of the current step by canonical event index (filled by
-# the cycles harness from the script; a volatile the compiler cannot see through otherwise), the
-# application's generator, the cycles harness on AVR.
-APP = r"""
-#include <stdint.h>
-#include "bench_inputs.h"
-volatile uint8_t app_sink;
-volatile uint8_t app_row[BENCH_ROW_BYTES];
-static uint8_t app_bit(uint8_t name) { return (uint8_t)((app_row[name >> 3] >> (name & 7u)) & 1u); }
-#ifdef BENCH_CYCLES
-#include <avr/io.h>
-#include <avr/interrupt.h>
-#include <avr/pgmspace.h>
-#include <avr/sleep.h>
-static void app_put(char c) { loop_until_bit_is_set(UCSR0A, UDRE0); UDR0 = (uint8_t)c; }
-static void app_hex(uint32_t v)
-{
-    uint8_t i;
-    for (i = 0; i < 8u; i++, v <<= 4) {
-        app_put("0123456789abcdef"[(uint8_t)(v >> 28)]);
-    }
-    app_put(' ');
-}
-static void app_run(void)
-{
-    uint32_t total = 0, worst = 0;
-    uint16_t step, overhead, t;
-    uint8_t i, overflow = 0;
-    UBRR0H = 0; UBRR0L = 0; UCSR0A = (uint8_t)(1u << U2X0); UCSR0B = (uint8_t)(1u << TXEN0);
-    UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
-    TCCR1A = 0; TCCR1B = (uint8_t)(1u << CS10);
-    TCNT1 = 0; overhead = TCNT1;
-    for (step = 0; step < BENCH_STEPS; step++) {
-        for (i = 0; i < BENCH_ROW_BYTES; i++) {
-            app_row[i] = pgm_read_byte(&app_rows[step][i]);
-        }
-        TIFR1 = (uint8_t)(1u << TOV1);
-        TCNT1 = 0;
-        BENCH_STEP();
-        t = (uint16_t)(TCNT1 - overhead);
-        overflow |= (uint8_t)(TIFR1 & (1u << TOV1));
-        total += t;
-        if (t > worst) worst = t;
-    }
-    app_put('c'); app_put(' ');
-    app_hex(total); app_hex(worst); app_hex(BENCH_STEPS); app_hex(overflow);
-    app_put('\n');
-    loop_until_bit_is_set(UCSR0A, TXC0);
-    cli(); sleep_enable(); sleep_cpu();
-}
-#else
-static void app_run(void) { for (;;) { BENCH_STEP(); } }
-#endif
-"""
-
-PUBLISHED_MAIN = r"""
-#include "model.h"
-#define BENCH_STEP() SCT_run_step()
-""" + APP + r"""
-static uint8_t app_state = 1;
-uint8_t app_random(void)
-{   /* the application's generator (kilolib's rand_soft on a Kilobot): a byte of xorshift */
-    app_state ^= (uint8_t)(app_state << 3); app_state ^= (uint8_t)(app_state >> 5);
-    app_state ^= (uint8_t)(app_state << 1);
-    return app_state;
-}
-static unsigned char app_check(void *data) { return app_bit(app_name_of[(uint8_t)(uintptr_t)data]); }
-static void app_act(void *data) { app_sink = (uint8_t)(uintptr_t)data; }
-int main(void)
-{
-    uint8_t e;
-    SCT_init();
-    for (e = 0; e < NUM_EVENTS; e++) {
-        SCT_add_callback(e, app_act, app_check, (void *)(uintptr_t)e);
-    }
-    app_run();
-    return 0;
-}
-"""
-
-SWARMVM_MAIN = r"""
-#include "swarmvm.h"
-extern const uint8_t bench_image[];   /* bench_tables.c (swarmvm.h declares it in the profile) */
-static svm_vm_t vm;
-#define BENCH_STEP() (void)svm_step(&vm)
-""" + APP + r"""
-static uint8_t app_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
-{
-    (void)machine;
-    if (op == SVM_OP_CHECK) {
-        return app_bit(event);
-    }
-    app_sink = event;
-    return 0;
-}
-int main(void)
-{
-    svm_init(&vm);
-    svm_set_dispatch(&vm, app_dispatch);
-    svm_set_options(&vm, BENCH_OPTIONS, 1u);
-    if (svm_load_P(&vm, bench_image, BENCH_IMAGE_SIZE) != SVM_OK) {
-        return 1;
-    }
-    app_run();
-    return 0;
-}
-"""
-
-EMPTY = "int main(void) { for (;;) { } }\n"
-
-
-def c_bytes(data: bytes) -> str:
-    return ",".join(str(b) for b in data)
-
-
-def inputs_header(names_of: list[int], rows: list[set[int]], row_bytes: int, avr_cycles: bool) -> str:
-    """bench_inputs.h: each event's canonical index (the program's own numbering -> name) and
-    the script's rows as canonical masks (cycles builds only)."""
-    text = ["#include <stdint.h>", "#define BENCH_ROW_BYTES %d" % row_bytes, "#define BENCH_STEPS %d" % len(rows),
-            "static const uint8_t app_name_of[] = {%s};" % c_bytes(bytes(names_of))]
-    if avr_cycles:
-        masks = [sum(1 << e for e in row).to_bytes(row_bytes, "little") for row in rows]
-        text.append("#include <avr/pgmspace.h>")
-        text.append("static const uint8_t app_rows[%d][%d] PROGMEM = {%s};"
-                    % (len(rows), row_bytes, ",".join("{%s}" % c_bytes(m) for m in masks)))
-    return "\n".join(text) + "\n"
 
 
 @dataclass(frozen=True)
@@ -312,7 +208,7 @@ def measure(tc: Toolchain, elf: Path, empty: Sizes) -> Sizes:
 
 def empty_program(tc: Toolchain, work: Path) -> Sizes:
     source, elf = work / "empty.c", work / ("empty_%s.elf" % tc.name)
-    source.write_text(EMPTY)
+    source.write_text(side_by_side.EMPTY)
     run([tc.cc, *tc.flags, str(source), *tc.link, "-o", str(elf)], "empty program")
     text, data, bss = sections(tc, elf)
     return Sizes(text + data, data + bss)
@@ -326,11 +222,18 @@ class Row:
     swarmvm_flash: int
     published_ram: int
     swarmvm_ram: int
-    published_cycles: Optional[float]
-    swarmvm_cycles: Optional[float]
+    # The cost of a step (step_unit: cycles on avr, instructions on arm), mean and worst.
+    published_step: Optional[float]
+    swarmvm_step: Optional[float]
     published_worst: Optional[int]
     swarmvm_worst: Optional[int]
     swarmvm_image: int
+    step_unit: str
+    # The events the VMs fired over the script and their digest (the same on both sides and the
+    # reference's: checked; swarmvm's alone where the published program does not fit the
+    # ATmega328P), None where nothing was stepped.
+    fired: Optional[int] = None
+    digest: Optional[int] = None
     # swarmvm's generator (svm_random), counted in swarmvm_flash; the published program's is the
     # application's and is not counted in published_flash.
     swarmvm_generator: int = 0
@@ -347,6 +250,15 @@ class Row:
         return None if a is None or b is None else a / b
 
 
+@dataclass(frozen=True)
+class Steps:
+    """One program's run over the script: the cost of its steps and what it fired."""
+    mean: float
+    worst: int
+    fired: int
+    digest: int
+
+
 class Supervisor:
     """One supervisor's sources for both VMs, written under ``work``."""
 
@@ -356,37 +268,50 @@ class Supervisor:
         self.compiled = compile_model([str(path)], names=False)
         tables = self.compiled.tables
         self.image = self.compiled.image
-        self.row_bytes = (tables.num_events + 7) // 8
         self.rows = [set(r) for r in random_script(tables, STEPS, SEED, DENSITY)]
-        canonical = {name: i for i, name in enumerate(tables.names)}
+        self.expected = same_steps.expected(self.image, self.rows, *RULE, seed=VM_SEED)
+        controllable = [e for e in range(tables.num_events) if tables.controllable >> e & 1]
+        # The published tables numbered in swarmvm's input order: published index -> canonical.
+        self.published_names = same_steps.published_order(self.expected.input_order, controllable)
         self.published_dir, self.swarmvm_dir = work / self.name / "published", work / self.name / "swarmvm"
-        published_tables.write(path, self.published_dir)
-        doc = published_tables.nadzoru_c_form.read_yaml(path)
-        self.published_names = [canonical[e[3:] if e.startswith("EV_") else e] for e in doc["events"]]
+        doc_name = {(e[3:] if e.startswith("EV_") else e): e
+                    for e in nadzoru_c_form.read_yaml(path)["events"]}
+        published_tables.write(path, self.published_dir,
+                               order=[doc_name[tables.names[e]] for e in self.published_names])
         self.swarmvm_dir.mkdir(parents=True, exist_ok=True)
         (self.swarmvm_dir / "bench_tables.c").write_text(
-            '#include "swarmvm.h"\nconst uint8_t bench_image[%d] SVM_PROGMEM = {%s};\n' % (len(self.image), c_bytes(self.image)))
-        (self.published_dir / "main.c").write_text(PUBLISHED_MAIN)
-        (self.swarmvm_dir / "main.c").write_text(SWARMVM_MAIN)
+            '#include "swarmvm.h"\nconst uint8_t bench_image[%d] SVM_PROGMEM = {%s};\n'
+            % (len(self.image), side_by_side.c_bytes(self.image)))
+        (self.published_dir / "main.c").write_text(side_by_side.PUBLISHED_MAIN)
+        (self.swarmvm_dir / "main.c").write_text(side_by_side.SWARMVM_MAIN)
         self.overflows: set[tuple[str, str]] = set()
         if "-DSVM_TRUSTED_IMAGE=bench_image" in profile and not has_public_inputs(tables):
             self.profile = [*profile, NO_PUBLIC]
-        self.limits = ["-DBENCH_OPTIONS=" + OPTIONS, "-DSVM_MAX_EVENTS=%d" % tables.num_events, "-DSVM_MAX_SUPERVISORS=%d" % tables.num_supervisors,
+        self.limits = ["-DBENCH_OPTIONS=" + OPTIONS, "-DBENCH_SEED=%du" % VM_SEED,
+                       "-DSVM_MAX_EVENTS=%d" % tables.num_events, "-DSVM_MAX_SUPERVISORS=%d" % tables.num_supervisors,
                        "-DSVM_MAX_STATES=%d" % tables.num_states, "-DBENCH_IMAGE_SIZE=%du" % len(self.image)]
 
-    def build(self, tc: Toolchain, side: str, cycles: bool) -> Path:
+    def sources(self, side: str, platform: Optional[Path]) -> tuple[Path, list[str], list[Path]]:
+        """(folder, compiler flags, sources) of one side's program, its inputs header written;
+        ``platform``: the cycles build's, with the harness platform that times the steps."""
         folder = self.published_dir if side == "published" else self.swarmvm_dir
         names = self.published_names if side == "published" else list(range(len(self.compiled.tables.names)))
-        (folder / "bench_inputs.h").write_text(inputs_header(names, self.rows, self.row_bytes, cycles))
-        elf = folder / ("%s%s.elf" % (tc.name, "_cycles" if cycles else ""))
-        extra = ["-DBENCH_CYCLES"] if cycles else []
+        (folder / "bench_inputs.h").write_text(
+            side_by_side.inputs_header(names, self.rows, self.expected.draws, platform is not None))
+        timed = ([] if platform is None else
+                 ["-DBENCH_CYCLES", "-DSVM_HARNESS_CYCLES", "-I", str(HARNESS), "-I", str(RUNTIME)])
+        more = [] if platform is None else [platform]
         if side == "published":
-            cmd = [tc.cc, *tc.flags, *extra, "-I", str(folder), "-DSCT_TABLES=\"model_tables.c\"",
-                   "-DSCT_RANDOM=app_random", "-DSCT_RANDOM_TYPE=uint8_t", "-include", "stdint.h",
-                   str(folder / "main.c"), str(PUBLISHED_VM)]
-        else:
-            cmd = [tc.cc, *tc.flags, "-Werror", "-pedantic", *extra, *self.profile, *self.limits, "-I", str(folder),
-                   "-I", str(RUNTIME), str(folder / "main.c"), str(folder / "bench_tables.c"), str(RUNTIME / "swarmvm.c")]
+            return folder, ["-I", str(folder), *timed, "-DSCT_TABLES=\"model_tables.c\"", "-DSCT_RANDOM=app_random",
+                            "-DSCT_RANDOM_TYPE=uint8_t", "-include", "stdint.h"], [folder / "main.c", PUBLISHED_VM, *more]
+        return folder, ["-Werror", "-pedantic", *self.profile, *self.limits, "-I", str(folder), "-I", str(RUNTIME),
+                        *timed], [folder / "main.c", folder / "bench_tables.c", RUNTIME / "swarmvm.c", *more]
+
+    def build(self, tc: Toolchain, side: str, cycles: bool) -> Path:
+        """One side's program for a toolchain: the flash build, or the AVR cycles build."""
+        folder, flags, sources = self.sources(side, PLATFORM_AVR if cycles else None)
+        elf = folder / ("%s%s.elf" % (tc.name, "_cycles" if cycles else ""))
+        cmd = [tc.cc, *tc.flags, *flags, *map(str, sources)]
         what = "%s/%s/%s" % (self.name, side, tc.name)
         try:
             run([*cmd, *tc.link, "-o", str(elf)], what)
@@ -400,54 +325,106 @@ class Supervisor:
             self.overflows.add((tc.name, side))
         return elf
 
+    def build_qemu(self, side: str) -> Path:
+        """One side's instruction-count build for QEMU's mps2-an386, as benchmarks/m4_cycles.py's
+        harness is built (qemu_harness.compile_m4: firmware/capbot's flags, start-up code and
+        linker script), with its SysTick timer (platform_qemu.c)."""
+        folder, flags, sources = self.sources(side, PLATFORM_QEMU)
+        elf = folder / "arm_instructions.elf"
+        try:
+            return Path(qemu_harness.compile_m4(sources, elf, flags))
+        except subprocess.CalledProcessError as exc:
+            raise Unmeasurable("%s/%s/arm (QEMU): arm-none-eabi-gcc failed: %s"
+                               % (self.name, side, (exc.stderr or "").strip()[:2000]))
 
-def cycles_of(elf: Path) -> tuple[float, int]:
-    """(mean, worst) cycles per step of a cycles build in simavr."""
+    def steps(self, tc: Toolchain, side: str) -> Steps:
+        """One side's run over the script on the toolchain's simulator (simavr, QEMU)."""
+        if tc.name == "avr":
+            elf = self.build(tc, side, cycles=True)
+            return parse_steps(elf, simavr_output(elf))
+        elf = self.build_qemu(side)
+        return parse_steps(elf, qemu_output(elf))
+
+
+def parse_steps(elf: Path, text: str) -> Steps:
+    """The figures of a cycles build's line (benchmarks/published_form/side_by_side.py)."""
+    match = re.search(r"c ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8})", text)
+    if match is None:
+        raise Unmeasurable("%s: no step counts in the simulator's output: %r" % (elf, text[-500:]))
+    total, worst, steps, overflow, fired, digest = (int(g, 16) for g in match.groups())
+    if overflow or steps != STEPS:
+        raise Unmeasurable("%s: a step overflowed the 16-bit timer, or the run was cut short" % elf)
+    return Steps(total / steps, worst, fired, digest)
+
+
+def simavr_output(elf: Path) -> str:
     try:
         proc = subprocess.run(["simavr", "-m", "atmega328p", "-f", "8000000", str(elf)],
                               capture_output=True, text=True, timeout=SIMAVR_TIMEOUT)
     except subprocess.TimeoutExpired:
         raise Unmeasurable("%s: simavr did not finish in %d s" % (elf, SIMAVR_TIMEOUT))
-    text = c_harness.simavr_output(proc.stderr) + proc.stdout
-    match = re.search(r"c ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8}) ([0-9a-f]{8})", text)
-    if match is None:
-        raise Unmeasurable("%s: no cycle counts in simavr's output: %r" % (elf, text[-500:]))
-    total, worst, steps, overflow = (int(g, 16) for g in match.groups())
-    if overflow or steps != STEPS:
-        raise Unmeasurable("%s: a step overflowed the 16-bit timer, or the run was cut short" % elf)
-    return total / steps, worst
+    return str(c_harness.simavr_output(proc.stderr)) + proc.stdout
+
+
+def qemu_output(elf: Path) -> str:
+    status, out, err = qemu_harness.run(elf, icount=True)
+    if status != 0:
+        raise Unmeasurable("%s: QEMU ended with status %d: %s" % (elf, status, (err or out).strip()[-500:]))
+    return str(out)
+
+
+def same_transitions(sup: Supervisor, tc: Toolchain, runs: dict[str, Steps]) -> tuple[int, int]:
+    """(fired, digest) of the runs, which must be the reference's, or Unmeasurable: the two VMs
+    took different transitions, or the VMs that ran (swarmvm alone where the published program
+    does not fit) others than the reference VM."""
+    want = (sup.expected.fired, sup.expected.digest)
+    got = {side: (r.fired, r.digest) for side, r in runs.items()}
+    if len(set(got.values())) > 1:
+        raise Unmeasurable("%s/%s: the published VM and swarmvm took different transitions over the script "
+                           "(published: %d events fired, digest %08x; swarmvm: %d, %08x; the reference: %d, %08x)"
+                           % (sup.name, tc.name, *got["published"], *got["swarmvm"], *want))
+    for side, figures in got.items():
+        if figures != want:
+            raise Unmeasurable("%s/%s: %s took other transitions than the reference VM (%d events fired, digest "
+                               "%08x; the reference: %d, %08x)"
+                               % (sup.name, tc.name, "both VMs" if len(got) == 2 else side, *figures, *want))
+    return want
 
 
 def bench(paths: list[Path], toolchains: list[Toolchain], work: Path, cycles: bool = True,
           validating: bool = False) -> list[Row]:
-    """One row per supervisor and toolchain; ``validating``: swarmvm as today's Kilobot build
-    (the image checked at load) instead of the minimal profile."""
+    """One row per supervisor and toolchain; ``cycles``: also the cost of a step (simavr on
+    avr, QEMU on arm); ``validating``: swarmvm as today's Kilobot build (the image checked at
+    load) instead of the minimal profile."""
     profile = [*VALIDATING, *FEATURES] if validating else PROFILE
     for tc in toolchains:
         require(tc.cc, tc.size, tc.nm)
-    if cycles and any(tc.name == "avr" for tc in toolchains):
-        require("simavr")
+    if cycles:
+        require(*(("simavr",) if any(tc.name == "avr" for tc in toolchains) else ()),
+                *(("qemu-system-arm",) if any(tc.name == "arm" for tc in toolchains) else ()))
     empties = {tc.name: empty_program(tc, work) for tc in toolchains}
     rows = []
     for path in paths:
         sup = Supervisor(path, work, profile)
         for tc in toolchains:
             sizes: dict[str, Sizes] = {}
-            counts: dict[str, tuple[Optional[float], Optional[int]]] = {}
             generator = 0
             for side in ("published", "swarmvm"):
                 elf = sup.build(tc, side, cycles=False)
                 sizes[side] = measure(tc, elf, empties[tc.name])
                 if side == "swarmvm":
                     generator = symbol_bytes(tc, elf, GENERATOR)
-                counts[side] = (None, None)
-                if cycles and tc.name == "avr" and (tc.name, side) not in sup.overflows:
-                    counts[side] = cycles_of(sup.build(tc, side, cycles=True))
             if (tc.name, "swarmvm") in sup.overflows:
                 raise Unmeasurable("%s: swarmvm's program does not fit the ATmega328P's SRAM" % sup.name)
+            runs = {side: sup.steps(tc, side) for side in ("published", "swarmvm")
+                    if cycles and (tc.name, side) not in sup.overflows}
+            pub, svm = runs.get("published"), runs.get("swarmvm")
+            fired, digest = same_transitions(sup, tc, runs) if runs else (None, None)
             rows.append(Row(sup.name, tc.name, sizes["published"].flash, sizes["swarmvm"].flash,
-                            sizes["published"].ram, sizes["swarmvm"].ram, counts["published"][0], counts["swarmvm"][0],
-                            counts["published"][1], counts["swarmvm"][1], len(sup.image),
+                            sizes["published"].ram, sizes["swarmvm"].ram,
+                            pub.mean if pub else None, svm.mean if svm else None,
+                            pub.worst if pub else None, svm.worst if svm else None,
+                            len(sup.image), UNITS[tc.name], fired, digest,
                             generator, (tc.name, "published") in sup.overflows))
     return rows
 
@@ -459,16 +436,16 @@ def fmt(value: Optional[float], digits: int = 0) -> str:
 def table(rows: list[Row]) -> str:
     lines = ["| toolchain | supervisor | flash published / swarmvm (ratio) "
              "| flash swarmvm without its generator (ratio) | RAM published / swarmvm (ratio) "
-             "| cycles/step mean published / swarmvm (ratio) | worst published / swarmvm |",
-             "|---|---|---|---|---|---|---|"]
+             "| per step (unit): mean published / swarmvm (ratio) | worst published / swarmvm | events fired (both) |",
+             "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        pub_cycles = "does not fit SRAM" if r.published_overflows else fmt(r.published_cycles)
-        lines.append("| %s | %s | %s / %s (%s) | %s (%s) | %s%s / %s (%s) | %s / %s (%s) | %s / %s |" % (
+        pub_step = "does not fit SRAM" if r.published_overflows else fmt(r.published_step)
+        lines.append("| %s | %s | %s / %s (%s) | %s (%s) | %s%s / %s (%s) | (%s) %s / %s (%s) | %s / %s | %s |" % (
             r.toolchain, r.supervisor, fmt(r.published_flash), fmt(r.swarmvm_flash), fmt(r.ratio("flash"), 2),
             fmt(r.swarmvm_flash_without_generator), fmt(r.swarmvm_flash_without_generator / r.published_flash, 2),
             fmt(r.published_ram), " (over 2,048)" if r.published_overflows else "", fmt(r.swarmvm_ram),
-            fmt(r.ratio("ram"), 2), pub_cycles, fmt(r.swarmvm_cycles), fmt(r.ratio("cycles"), 2),
-            fmt(r.published_worst), fmt(r.swarmvm_worst)))
+            fmt(r.ratio("ram"), 2), r.step_unit, pub_step, fmt(r.swarmvm_step), fmt(r.ratio("step"), 2),
+            fmt(r.published_worst), fmt(r.swarmvm_worst), fmt(r.fired)))
     return "\n".join(lines)
 
 
@@ -476,7 +453,7 @@ def main(argv: Optional[list[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("supervisors", nargs="*", help="supervisor.yaml files (default: the corpus)")
     parser.add_argument("--toolchain", choices=("avr", "arm"), action="append", help="default: both")
-    parser.add_argument("--no-cycles", action="store_true", help="flash and RAM only")
+    parser.add_argument("--no-cycles", action="store_true", help="flash and RAM only (no simulator)")
     parser.add_argument("--validating", action="store_true",
                         help="swarmvm as today's compiled-in Kilobot build, which checks the image at load")
     parser.add_argument("--check", action="store_true", help="exit with status 1 where swarmvm's flash is not below")
@@ -491,8 +468,9 @@ def main(argv: Optional[list[str]] = None) -> int:
         print("flash_vs_published: cannot measure: %s" % exc, file=sys.stderr)
         return 1
     print("swarmvm's %s vs the published VM: VM + tables, bytes" % ("validating build" if args.validating else "minimal profile")
-          + " (flash: text + data; RAM: "
-          "data + bss; cycles: simavr, %d steps, edge inputs); ratio swarmvm / published" % STEPS)
+          + " (flash: text + data; RAM: data + bss); per step: %d steps of one script, edge inputs, both VMs taking "
+          "the same transitions (checked): avr cycles in simavr, arm instructions counted in QEMU -icount (QEMU does "
+          "not model the Cortex-M4's timing: not cycles); ratio swarmvm / published" % STEPS)
     print("generators: swarmvm's flash counts its xorshift32 (%s); the published VM's counts none (it draws "
           "from the application's generator, as from rand_soft on a Kilobot); 'without its generator' takes "
           "%s's bytes off swarmvm's" % (GENERATOR, GENERATOR))
@@ -500,7 +478,7 @@ def main(argv: Optional[list[str]] = None) -> int:
     worse = [r for r in rows if r.swarmvm_flash >= r.published_flash]
     worse_without = [r for r in rows if r.swarmvm_flash_without_generator >= r.published_flash]
     write_figures(args.json, [dict(asdict(r), flash_ratio=r.ratio("flash"), ram_ratio=r.ratio("ram"),
-                                   cycles_ratio=r.ratio("cycles"),
+                                   step_ratio=r.ratio("step"),
                                    swarmvm_flash_without_generator=r.swarmvm_flash_without_generator,
                                    flash_ratio_without_generator=r.swarmvm_flash_without_generator / r.published_flash)
                               for r in rows])
@@ -513,6 +491,11 @@ def main(argv: Optional[list[str]] = None) -> int:
         print("flash_vs_published: without its generator, not below on %d of %d: %s"
               % (len(worse_without), len(rows),
                  ", ".join("%s/%s" % (r.toolchain, r.supervisor) for r in worse_without)))
+    slower = [r for r in rows if r.swarmvm_step is not None and r.published_step is not None
+              and r.swarmvm_step >= r.published_step]
+    if slower:
+        print("flash_vs_published: swarmvm's step costs no less than the published VM's on %d of %d: %s"
+              % (len(slower), len(rows), ", ".join("%s/%s" % (r.toolchain, r.supervisor) for r in slower)))
     return 1 if worse and args.check else 0
 
 

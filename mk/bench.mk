@@ -2,7 +2,9 @@
 #   make bench        also runs benchmarks/flash_vs_published.py: per corpus supervisor, on avr-gcc
 #                     (ATmega328P) and arm-none-eabi-gcc (Cortex-M4F), the published-form VM
 #                     (benchmarks/published_form/) and swarmvm's SVM_TRUSTED_IMAGE profile built
-#                     side by side, their flash, RAM and (simavr) cycles per step, and the ratios
+#                     side by side, their flash, RAM and cost per step (cycles in simavr on AVR,
+#                     instructions counted in QEMU -icount on ARM, both VMs checked to take the
+#                     same transitions), and the ratios
 #   make bench-flash  that benchmark alone
 
 .PHONY: bench-flash
