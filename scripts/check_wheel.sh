@@ -67,5 +67,6 @@ done
 (cd "$work" && "$work/venv/bin/python" -m pytest -p no:cacheprovider --rootdir "$root" \
   "$root/tests/cli" "${boundary[@]}" "$root/tests/golden" "$root/tests/targets/pipuck" "$root/tests/python" \
   "$root/tests/docs" \
-  "$root/tests/footprint/test_footprint_ci.py")   # every command README.md and docs/ show, run with the wheel's
-                                                  # swarmvm; the CI recipes, and --cycles building the board it ships
+  "$root/tests/footprint/test_footprint_ci.py" "$root/tests/targets/capbot/test_capbot_qemu.py")
+# every command README.md and docs/ show, run with the wheel's swarmvm; the CI recipes, --cycles
+# building the board it ships, and the generated CapBot project's bare-metal build from the wheel alone

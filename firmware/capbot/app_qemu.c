@@ -17,30 +17,30 @@
  * actions and checks are matched to the page image's events by name (events it does not
  * know get no action and a check that returns 0).
  *
- * Build with -DSVM_APP=<model name> -DSVM_APP_HEADER='"<model name>_tables.h"' and the model's
- * limit flags (or page_limits.flags); the CapBot API comes from capbot.h / capbot_qemu.c
- * (stand-ins).
+ * Built with the minimal profile (-DSVM_TRUSTED_IMAGE=<model name>_image: the generated
+ * qemu/Makefile's MINIMAL=1), only the compiled-in image can run (svm_load_P refuses any other),
+ * so there is no flash page to read: the compiled-in logic runs, stderr says so.
+ *
+ * The model comes from svm_app.h, which gen writes into the project's qemu/ folder
+ * (templates/capbot/svm_app.h.j2): its tables header and its image, load and dispatch by name, so
+ * that a model named like a macro (NULL, EOF, stdout) builds as well as any other. Build with
+ * that folder and src/ on the include path and the model's limit flags (or page_limits.flags),
+ * as qemu/Makefile does; the CapBot API comes from capbot.h / capbot_qemu.c (stand-ins). This
+ * file's own identifiers that a model's could take (<model>_dispatch) start with svm_app_: no
+ * model name starts with svm.
  */
 #include <stdio.h>
 
 #include "capbot.h"
 #include "swarmvm_logic_page.h"
 #include "swarmvm_trace.h"
-#include SVM_APP_HEADER
+#include "svm_app.h"
 
 #ifndef SVM_APP_STEPS
 #define SVM_APP_STEPS 20
 #endif
 
 #define ENV_SEED 2024u
-
-#define CAT_(a, b) a##b
-#define CAT(a, b) CAT_(a, b)
-#define APP_DISPATCH CAT(SVM_APP, _dispatch)
-#define APP_LOAD CAT(SVM_APP, _load)
-#define APP_IMAGE CAT(SVM_APP, _image)
-#define APP_NAME_(a) #a
-#define APP_NAME(a) APP_NAME_(a)
 
 static svm_vm_t vm;
 static uint8_t to_compiled[SVM_MAX_EVENTS]; /* running image's event -> controller's event */
@@ -73,10 +73,10 @@ static void draw_environment(void)
 
 /* The generated dispatch, with the environment added to the checks and each action noted:
  * the events fired in this step. */
-static uint8_t traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
+static uint8_t svm_app_traced_dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
 {
     uint8_t own = to_compiled[event];
-    uint8_t result = own == SVM_LOGIC_NO_EVENT ? 0u : APP_DISPATCH(machine, own, op);
+    uint8_t result = own == SVM_LOGIC_NO_EVENT ? 0u : SVM_APP_DISPATCH(machine, own, op);
     if (op == SVM_OP_CHECK) {
         return (uint8_t)(result || ((occurs[event >> 3] >> (event & 7u)) & 1u));
     }
@@ -102,6 +102,7 @@ static void put_trace_line(unsigned long step)
     (void)putchar('\n');
 }
 
+#ifndef SVM_TRUSTED_IMAGE
 /* A page of one repeated byte, 0xFF (erased flash) or 0x00 (memory QEMU was given nothing for),
  * has never been written: saying "blank" there, not "refused", keeps the expected state of a
  * robot without a page from reading like a fault. */
@@ -119,29 +120,38 @@ static int logic_page_is_blank(void)
     }
     return 1;
 }
+#endif
 
-/* Compiled-in logic first, then the flash page's if it holds a valid image. A refused
+/* Compiled-in logic first, then the flash page's if it holds a valid image (in the minimal
+ * profile, the compiled-in logic alone, its events the controller's own). A refused
  * compiled-in image (corrupted: SVM_ERR_CRC) is reported and nothing runs, as on the robot. */
 static int load_logic(void)
 {
-    int page = APP_LOAD(&vm);
+    int page = SVM_APP_LOAD(&vm);
     if (page != SVM_OK) {
-        (void)fputs("compiled-in " APP_NAME(SVM_APP) ": refused (swarmvm error ", stderr);
+        (void)fputs("compiled-in " SVM_APP_NAME ": refused (swarmvm error ", stderr);
         svm_put_decimal(to_stderr, (uint32_t)page);
         (void)fputs(")\n", stderr);
         return 0;
     }
-    page = svm_logic_page_load(&vm, APP_IMAGE, (uint16_t)sizeof APP_IMAGE, to_compiled);
+#ifdef SVM_TRUSTED_IMAGE
+    for (page = 0; page < SVM_MAX_EVENTS; page++) {
+        to_compiled[page] = (uint8_t)page;
+    }
+    (void)fputs("minimal profile: running the compiled-in " SVM_APP_NAME " (no logic page)\n", stderr);
+#else
+    page = svm_logic_page_load(&vm, SVM_APP_IMAGE, (uint16_t)sizeof SVM_APP_IMAGE, to_compiled);
     /* fputs, not fprintf: printf's formatter would triple the application's flash. */
     if (page == SVM_OK) {
         (void)fputs("logic page: running its image\n", stderr);
     } else if (logic_page_is_blank()) {
-        (void)fputs("logic page: blank (never written), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
+        (void)fputs("logic page: blank (never written), running the compiled-in " SVM_APP_NAME "\n", stderr);
     } else {
         (void)fputs("logic page: not a valid image, refused (swarmvm error ", stderr);
         svm_put_decimal(to_stderr, (uint32_t)page);
-        (void)fputs("), running the compiled-in " APP_NAME(SVM_APP) "\n", stderr);
+        (void)fputs("), running the compiled-in " SVM_APP_NAME "\n", stderr);
     }
+#endif
     return 1;
 }
 
@@ -153,7 +163,7 @@ int main(void)
         return 2;
     }
     svm_init(&vm);
-    svm_set_dispatch(&vm, traced_dispatch);
+    svm_set_dispatch(&vm, svm_app_traced_dispatch);
     if (!load_logic()) {
         return 1;
     }

@@ -43,8 +43,8 @@ def test_one_bar_group_per_row_with_its_split_budget_and_limit(build, larger, tm
         assert parts == ["core", "tables", "application"] * 2 + ["stack"] * known   # flash, RAM, stack (if known)
         lines = sorted(line.get("class") for line in group.iter(SVG + "line"))
         kilobot = name.startswith("kilobot/")
-        # Kilobot: the flash budget, the flash, RAM and SRAM (stack) limits; CapBot: none applies to bytes
-        assert lines == (["budget", "limit", "limit", "limit"] if kilobot else [])
+        # both: the flash, RAM and SRAM (stack) limits of the robot's record; the Kilobot: the flash budget too
+        assert lines == (["budget", "limit", "limit", "limit"] if kilobot else ["limit", "limit", "limit"])
         over = kilobot and (footprint.measure(paths[name]).flash.total > 12000 or not known)   # budget, SRAM limit
         assert (group.get("data-over") == "true") == over
     measured = footprint.measure(larger)
@@ -136,8 +136,8 @@ def image(target, name, flash, ram, stack=None, cycles=None, unknown=None):
 
 
 def test_baseline_bars_stack_and_cycles_over_marks_and_one_scale_per_target(tmp_path):
-    """In memory: a CapBot row ten times the Kilobot's is drawn at the panel's width on its own
-    scale, as the Kilobot's largest figure is on its; a baseline's bars stand above the bars now
+    """In memory: a CapBot row ten times the Kilobot's is drawn on its own scale, its largest
+    figure (its flash limit) the panel's width, as the Kilobot's is on its; a baseline's bars stand above the bars now
     (a removed row has only its own); stack and cycles bars are drawn, an unknown stack labelled
     and, over a budget, its row marked."""
     old = tmp_path / "old.json"
@@ -165,6 +165,6 @@ def test_baseline_bars_stack_and_cycles_over_marks_and_one_scale_per_target(tmp_
     def flash_width(group):
         return sum(float(r.get("width")) for r in group.iter(SVG + "rect") if r.get("class") in PARTS[:3]
                    and float(r.get("x")) < fp_chart._x(1))
-    assert abs(flash_width(rows["capbot/a"]) - fp_chart.PANEL_WIDTH) < 0.5             # its own scale's largest
-    limit = footprint.Limits().robots["kilobot"].flash                                 # the Kilobot's: its limit
-    assert abs(flash_width(kilobot) - fp_chart.PANEL_WIDTH * 9000 / limit) < 0.5
+    for row, flash in ((rows["capbot/a"], 80000), (kilobot, 9000)):                  # each on its robot's flash limit
+        limit = footprint.Limits().robots[row.get("data-row").split("/")[0]].flash
+        assert abs(flash_width(row) - fp_chart.PANEL_WIDTH * flash / limit) < 0.5

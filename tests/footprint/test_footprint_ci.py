@@ -1,5 +1,6 @@
 """Footprint reports in CI (issues 25, point 6, and 36, point 5; docs/footprint.md, "In a user's
 CI" and "The project's own CI"): the GitHub Actions workflow and the GitLab CI job the docs give,
+and the CapBot's workflow (its project built bare-metal for QEMU from the installed swarmvm),
 read from the docs and run step by step, in order, as GitHub's and GitLab's runners would, on a
 real git repository made here; `make footprint`'s comparison of the example with the baseline
 kept in the repository; and `--cycles` from an installed swarmvm, which builds the simavr board
@@ -12,7 +13,8 @@ fresh clone checked out at the pull request. The install steps are not run: the 
 Python running the tests (the checkout's editable install, or the wheel under `make
 wheel-check`) stands in for the recipes' placeholder ``pip install "swarmvm @
 git+https://github.com/OWNER/swarmvm"``, and the machine's avr-gcc, simavr and kilolib (built in
-the cache, linked as ``kilolib/``) for the packages and the clone. `gh` and `curl` are replaced
+the cache, linked as ``kilolib/``) for the packages and the clone; the CapBot's, the machine's
+arm-none-eabi-gcc and QEMU, its wheel URL the placeholder. `gh` and `curl` are replaced
 on PATH by the recording stand-ins below (GITHUB_CLI, CURL): the GitHub and GitLab services they
 talk to are not reachable from the tests. The test keeps the services' state (comments, notes,
 artifacts) between runs, as the services would."""
@@ -26,6 +28,7 @@ import subprocess
 import sys
 import tomllib
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -50,7 +53,9 @@ def shrink(report: dict) -> dict:
 DOC = ROOT / "docs" / "footprint.md"
 YAML_BLOCK = re.compile(r"^```yaml\n(.*?)^```", re.M | re.S)
 MARKER = "<!-- swarmvm-footprint -->"
+CAPBOT_MARKER = "<!-- swarmvm-footprint-capbot -->"
 PLACEHOLDER = 'pip install "swarmvm @ git+https://github.com/OWNER/swarmvm"'
+WHEEL = 'pip install "https://github.com/OWNER/swarmvm/releases/download/v0.1.0/swarmvm-0.1.0-py3-none-any.whl"'
 BUDGETS = "[tool.swarmvm.footprint.kilobot]\nflash = 16000\nram = 400\n"
 TIGHT = "[tool.swarmvm.footprint.kilobot]\nflash = 1000\nram = 400\n"      # the image is ~12 kB
 FILTER_BYTES = 300
@@ -63,20 +68,39 @@ __attribute__((constructor)) static void filter(void) { filter_out = pgm_read_by
 """ % FILTER_BYTES
 SYMBOL_ROW = "| filter_table (robot_controller.c) | .text | — | %d | +%d | new |" % (FILTER_BYTES, FILTER_BYTES)
 GITLAB_API = "https://gitlab.example.com/api/v4"
+# The CapBot's repository (its workflow builds the project bare-metal for QEMU; the image is ~18 kB).
+CAPBOT_BUDGETS = "[tool.swarmvm.footprint.capbot]\nflash = 30000\nram = 4000\n"
+CAPBOT_TIGHT = "[tool.swarmvm.footprint.capbot]\nflash = 1000\nram = 4000\n"
+CAPBOT_GROW = """
+/* The pull request (tests/footprint/test_footprint_ci.py): a filter's coefficients in flash. */
+static const unsigned char filter_table[%d] = {1, 2, 3};
+volatile unsigned char filter_out;
+__attribute__((constructor)) static void filter(void) { filter_out = filter_table[filter_out]; }
+""" % FILTER_BYTES
 
 
-def recipes():
-    """The docs' YAML blocks that are CI recipes: (GitHub workflow, GitLab job name and job)."""
-    github = gitlab = None
+def workflows():
+    """The docs' YAML blocks that are CI recipes: {the target a GitHub workflow builds: workflow},
+    and the GitLab job's name and job."""
+    github, gitlab = {}, None
     for block in YAML_BLOCK.findall(DOC.read_text()):
         data = yaml.safe_load(block)
         if "jobs" in data:
-            github = data
+            (target,) = set(re.findall(r"--target (\w+)", block))
+            assert target not in github, "docs/footprint.md: two GitHub workflows of %s" % target
+            github[target] = data
         else:
             ((name, job),) = [(k, v) for k, v in data.items() if isinstance(v, dict) and "script" in v]
             gitlab = name, job
-    assert github is not None and gitlab is not None, "docs/footprint.md: both recipes as ```yaml blocks"
+    assert set(github) == {"kilobot", "capbot"} and gitlab is not None, \
+        "docs/footprint.md: the Kilobot's and the CapBot's workflows and the GitLab job as ```yaml blocks"
     return github, gitlab
+
+
+def recipes():
+    """The Kilobot's recipes: (GitHub workflow, GitLab job name and job)."""
+    github, gitlab = workflows()
+    return github["kilobot"], gitlab
 
 
 # ---- the user's repository --------------------------------------------------------------------
@@ -85,39 +109,60 @@ def git(folder: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(folder), *args], check=True, capture_output=True, text=True).stdout.strip()
 
 
-class Repository:
-    """The user's repository (``origin``): main at the base commit; branch ``grow``, the pull
-    request growing the controller; branch ``over``, the same with a budget it exceeds."""
+@dataclass(frozen=True)
+class Project:
+    """What a target's user repository keeps and how its pull requests change it: the controller
+    gen wrote once (the only file of ``firmware/`` committed), the budgets of the base commit and
+    of branch ``over``, and what branch ``grow`` appends to the controller."""
+    controller: str
+    budgets: str
+    tight: str
+    grow: str
 
-    def __init__(self, root: Path):
+
+PROJECTS = {
+    "kilobot": Project("firmware/robot_controller.c", BUDGETS, TIGHT, GROW),
+    "capbot": Project("firmware/src/robot_controller.c", CAPBOT_BUDGETS, CAPBOT_TIGHT, CAPBOT_GROW),
+}
+
+
+class Repository:
+    """The user's repository (``origin``) of a ``target``'s project: main at the base commit;
+    branch ``grow``, the pull request growing the controller; branch ``over``, the same with a
+    budget it exceeds."""
+
+    def __init__(self, root: Path, target: str = "kilobot"):
+        project = PROJECTS[target]
         self.root = root
         self.origin = root / "origin"
         self.origin.mkdir()
-        self.kilolib = kilolib_or_skip()
+        self.kilolib = kilolib_or_skip() if target == "kilobot" else None
         git(self.origin, "init", "-q", "-b", "main")
         git(self.origin, "config", "user.email", "dev@example.com")
         git(self.origin, "config", "user.name", "Developer")
         shutil.copy(EXAMPLE, self.origin / "supervisor.yaml")
-        (self.origin / "pyproject.toml").write_text(BUDGETS)
-        (self.origin / ".gitignore").write_text("/kilolib\nfirmware/*\n!firmware/robot_controller.c\n")
-        subprocess.run(["swarmvm", "gen", "supervisor.yaml", "--target", "kilobot", "-o", "firmware", "--name", "robot"],
+        (self.origin / "pyproject.toml").write_text(project.budgets)
+        kept = "".join("!%s/\n%s/*\n" % (folder, folder) for folder in Path(project.controller).parents[:-2][::-1])
+        (self.origin / ".gitignore").write_text("/kilolib\nfirmware/*\n%s!%s\n" % (kept, project.controller))
+        subprocess.run(["swarmvm", "gen", "supervisor.yaml", "--target", target, "-o", "firmware", "--name", "robot"],
                        cwd=self.origin, check=True, capture_output=True)
         git(self.origin, "add", ".")
         assert git(self.origin, "diff", "--cached", "--name-only").split() == [
-            ".gitignore", "firmware/robot_controller.c", "pyproject.toml", "supervisor.yaml"]
+            ".gitignore", project.controller, "pyproject.toml", "supervisor.yaml"]
         git(self.origin, "commit", "-q", "-m", "The supervisor and its controller")
         self.base = git(self.origin, "rev-parse", "HEAD")
         git(self.origin, "checkout", "-q", "-b", "grow")
-        with open(self.origin / "firmware" / "robot_controller.c", "a") as controller:
-            controller.write(GROW)
+        with open(self.origin / project.controller, "a") as controller:
+            controller.write(project.grow)
         git(self.origin, "commit", "-q", "-am", "A filter in the controller")
         git(self.origin, "checkout", "-q", "-b", "over")
-        (self.origin / "pyproject.toml").write_text(TIGHT)
+        (self.origin / "pyproject.toml").write_text(project.tight)
         git(self.origin, "commit", "-q", "-am", "A budget the image exceeds")
         git(self.origin, "checkout", "-q", "main")
-        for leftover in (self.origin / "firmware").iterdir():
-            if leftover.name != "robot_controller.c":
-                leftover.unlink()
+        controller = (self.origin / project.controller).read_bytes()   # gen's files go: each run generates its own
+        shutil.rmtree(self.origin / "firmware")
+        (self.origin / project.controller).parent.mkdir(parents=True)
+        (self.origin / project.controller).write_bytes(controller)
         self.runs = 0
 
     def checkout(self, branch: str) -> Path:
@@ -126,7 +171,8 @@ class Repository:
         folder = self.root / ("run%d" % self.runs)
         subprocess.run(["git", "clone", "-q", str(self.origin), str(folder)], check=True, capture_output=True)
         git(folder, "checkout", "-q", branch)
-        (folder / "kilolib").symlink_to(self.kilolib)
+        if self.kilolib is not None:
+            (folder / "kilolib").symlink_to(self.kilolib)
         return folder
 
 
@@ -315,13 +361,14 @@ class GitHubRun:
         return "".join(self.logs)
 
 
-def run_github(services: Services, folder: Path, branch: str, pr: int | None = None) -> GitHubRun:
+def run_github(services: Services, folder: Path, branch: str, pr: int | None = None, target: str = "kilobot") -> GitHubRun:
     """Each step of the workflow's job in order, as GitHub's runner would: ``run`` steps in bash
     (-e, pipefail), with the step's ``env`` (its ``${{ }}`` expressions from the event), a failed
     step skipping the later ones unless they say ``if: always()`` and failing the job unless it
     says ``continue-on-error``; the artifact actions copy between ``folder`` and
-    ``services.github_artifacts``. ``pr``: the pull request's number, else a push to ``branch``."""
-    workflow, _ = recipes()
+    ``services.github_artifacts``. ``pr``: the pull request's number, else a push to ``branch``;
+    ``target``: whose workflow (the docs' Kilobot or CapBot one)."""
+    workflow = workflows()[0][target]
     services.runs = getattr(services, "runs", 0) + 1
     temp = folder.parent / ("%s-temp" % folder.name)
     temp.mkdir()
@@ -373,14 +420,14 @@ def before_after(body: str, figure: str) -> tuple[int, int, int, int, int]:
     return tuple(int(group) for group in match.groups())
 
 
-def assert_reviewable(body: str, base_sha: str) -> None:
+def assert_reviewable(body: str, base_sha: str, marker: str = MARKER, flash_budget: int = 16000) -> None:
     """What a reviewer needs (issue 36, point 3): before, after, Δ, budget and margin; the symbol
     changes; the commits compared."""
-    assert body.startswith(MARKER + "\n")
+    assert body.startswith(marker + "\n")
     assert "| figure | before | after | Δ | % | budget | margin |" in body
     before, after, delta, budget, margin = before_after(body, "flash")
     assert after - before == delta and FILTER_BYTES < delta < FILTER_BYTES + 100
-    assert budget == 16000 and margin == budget - after
+    assert budget == flash_budget and margin == budget - after
     assert "## The 5 largest section and symbol changes of each row (bytes)" in body and SYMBOL_ROW in body
     assert "Growth allowed: 10 % per column." in body
     assert "(baseline: %s)" % base_sha[:12] in body                          # the base commit measured
@@ -442,6 +489,78 @@ def test_a_budget_the_pull_request_exceeds_fails_with_annotations_and_still_comm
     assert "kilobot/robot: flash from 16000 to 1000 B" in comment["body"]      # the budget the change moved
     report = json.loads(services.github_artifacts["over"]["footprint"]["footprint.json"])
     assert report["violations"] and "footprint.svg" in services.github_artifacts["over"]["footprint"]
+
+
+# ---- the CapBot's GitHub workflow: the project built bare-metal for QEMU ----------------------
+
+@pytest.fixture(scope="module")
+def capbot_repository(tmp_path_factory):
+    """The CapBot user's repository: its controller is firmware/src/robot_controller.c."""
+    missing = [tool for tool in ("arm-none-eabi-gcc", "qemu-system-arm") if shutil.which(tool) is None]
+    if missing:
+        pytest.skip("needs %s" % ", ".join(missing))
+    return Repository(tmp_path_factory.mktemp("capbot-user"), "capbot")
+
+
+# What the CapBot's workflow says where the Kilobot's says otherwise (beyond its install and build).
+KILOBOT_FOR_CAPBOT = (('make -C "$base/firmware/qemu"', 'make -C "$base/firmware" robot.elf KILOLIB="$PWD/kilolib"'),
+                      ("firmware/qemu/", "firmware/"), ("--target capbot", "--target kilobot"),
+                      (CAPBOT_MARKER, MARKER), ("footprint-capbot", "footprint"))
+
+
+def test_the_capbot_workflow_is_the_kilobots_with_the_capbot_build():
+    """The same steps (baseline, report, annotations, comment, artifact), its own artifact and
+    comment marker; swarmvm installed from a wheel, and the firmware built by the qemu/ Makefile."""
+    github, _ = workflows()
+    kilobot, capbot = (next(iter(github[t]["jobs"].values()))["steps"] for t in ("kilobot", "capbot"))
+    assert [s.get("name", s.get("uses")) for s in capbot] == [s.get("name", s.get("uses")) for s in kilobot][:2] + [
+        "Install swarmvm from its wheel, the Cortex-M toolchain and QEMU", "Build the firmware bare-metal for QEMU",
+        *[s.get("name", s.get("uses")) for s in kilobot][4:]]
+    (install,) = [s for s in capbot if s.get("name", "").startswith("Install")]
+    assert install["run"].splitlines()[1] == WHEEL and "qemu-system-arm" in install["run"]
+    build = capbot[3]["run"].splitlines()
+    assert build == ["swarmvm gen supervisor.yaml --target capbot -o firmware --name robot", "make -C firmware/qemu"]
+    download = next(s for s in capbot if s.get("uses", "").startswith("dawidd6/action-download-artifact@"))
+    upload = next(s for s in capbot if s.get("uses", "").startswith("actions/upload-artifact@"))
+    assert download["with"]["workflow"] == "footprint-capbot.yml"
+    assert download["with"]["name"] == upload["with"]["name"] == "footprint-capbot"
+    comment = next(s for s in capbot if "gh pr comment" in s.get("run", ""))
+    assert CAPBOT_MARKER in comment["run"] and MARKER + '"' not in comment["run"]
+    for ours, theirs in zip(capbot[4:], kilobot[4:]):       # the rest: the Kilobot's, with the CapBot's image
+        run = ours.get("run", "")
+        for capbot_text, kilobot_text in KILOBOT_FOR_CAPBOT:
+            run = run.replace(capbot_text, kilobot_text)
+        assert run == theirs.get("run", ""), ours.get("name")
+
+
+def test_a_capbot_pull_request_builds_its_base_and_comments_from_the_wheel_alone(capbot_repository, services):
+    """The pull request's firmware and the base commit's built bare-metal for QEMU by the qemu/
+    Makefile gen wrote (no file of swarmvm's checkout), measured with the sidecar's declarations
+    and script in QEMU, compared, and one comment kept; a budget exceeded fails with annotations."""
+    first = run_github(services, capbot_repository.checkout("grow"), "grow", pr=8, target="capbot")
+    assert all(status in (None, 0) for status in first.statuses), first.log
+    base = first.temp / "base" / "firmware" / "qemu"
+    assert (base / "robot.elf").is_file() and (base / "robot.footprint.json").is_file()
+    assert git(first.temp / "base", "rev-parse", "HEAD") == capbot_repository.base
+    report = json.loads((first.folder / "footprint.json").read_text())
+    (image,) = report["images"]
+    assert image["target"] == "capbot" and image["elf"] == "firmware/qemu/robot.elf"
+    assert "unknown" not in image["stack"] and image["cycles"]["steps"] == 20 and report["violations"] == []
+    (comment,) = services.load()["comments"]
+    assert comment["pr"] == "8"
+    assert_reviewable(comment["body"], capbot_repository.base, CAPBOT_MARKER, 30000)
+    assert "| capbot | robot | changed |" in comment["body"]
+    assert "the `footprint-capbot` artifact of [run 1]" in comment["body"]
+    assert set(services.github_artifacts["grow"]["footprint-capbot"]) == {"footprint.json", "footprint.svg"}
+
+    over = run_github(services, capbot_repository.checkout("over"), "over", pr=8, target="capbot")
+    failed = over.statuses.index(1)
+    assert over.statuses[failed + 1:] == [0, None]
+    errors = [line for line in over.logs[failed].splitlines() if line.startswith("::error::")]
+    assert any(re.fullmatch(r"::error::swarmvm: footprint: capbot/robot: flash \d+ B over its budget of 1000 B "
+                            r"\(by \d+ B\)", e) for e in errors), errors
+    (comment,) = services.load()["comments"]                                # updated, not a second one
+    assert "over its budget of 1000 B" in comment["body"] and "capbot/robot: flash from 30000 to 1000 B" in comment["body"]
 
 
 # ---- GitLab CI ------------------------------------------------------------------------------

@@ -101,12 +101,15 @@ def test_junit_has_a_testcase_per_row_and_check_and_the_failure(build, larger, b
     assert result.returncode == 1
     root = ET.fromstring(result.stdout)
     cases = root.findall("./testsuite/testcase")
-    # kilobot: flash, RAM and VM limits, the flash budget, growth; capbot: the VM limit, growth
+    # each: flash, RAM, SRAM (stack) and VM limits, growth; kilobot: the flash budget too
+    capbot_ram = footprint.measure(elf(build, "capbot", "energy_worker")).ram.total
     assert sorted((c.get("classname"), c.get("name")) for c in cases) == sorted([
         ("kilobot/energy_worker", "flash <= 28672 B (limit)"), ("kilobot/energy_worker", "ram <= 1024 B (limit)"),
         ("kilobot/energy_worker", "vm <= 100000 B (limit)"), ("kilobot/energy_worker", "flash <= %d B (budget)" % bound),
         ("kilobot/energy_worker", "stack <= %d B (limit)" % (2048 - footprint.measure(larger).ram.total)),
         ("kilobot/energy_worker", "growth <= 50 % per column"),
+        ("capbot/energy_worker", "flash <= 995328 B (limit)"), ("capbot/energy_worker", "ram <= 260096 B (limit)"),
+        ("capbot/energy_worker", "stack <= %d B (limit)" % (262144 - capbot_ram)),
         ("capbot/energy_worker", "vm <= 100000 B (limit)"), ("capbot/energy_worker", "growth <= 50 % per column")])
     failed = [c for c in cases if c.find("failure") is not None]
     assert len(failed) == 2                              # the flash budget, and RAM grew by over 50 %

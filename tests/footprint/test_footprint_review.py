@@ -74,13 +74,17 @@ def test_a_changed_row_shows_before_after_budget_limit_margins_and_capacity(buil
     assert rows["vm (B)"][-1] == "capacity unknown"                                # flash and RAM: a share of neither
 
 
-def test_the_capbot_capacity_is_unknown_never_invented(compared):
-    """The CapBot target's record gives no flash or SRAM size: every share says so, and the note why."""
+def test_the_capbot_capacity_is_its_records_never_invented(build, compared):
+    """The CapBot target's record gives the nRF52840's flash below the logic page and its RAM: the
+    shares are of those, the VM figure's capacity unknown, and the note says which is which."""
     markdown, _ = compared
     rows = figures(markdown, "capbot/energy_worker")
-    assert {cells[-1] for cells in rows.values()} == {"capacity unknown"}
-    assert "- capbot: capacity unknown: VM is flash and RAM together, a share of neither; capacity unknown: the " \
-           "capbot target's record gives no flash or SRAM size" in markdown
+    image = footprint.measure(elf(build, "capbot", "energy_worker"))
+    assert rows["flash (B)"][-1] == "%.1f %%" % (100 * image.flash.total / 0xF3000)
+    assert rows["ram (B)"][-1] == "%.1f %%" % (100 * image.ram.total / (256 * 1024))
+    assert rows["vm (B)"][-1] == "capacity unknown"
+    assert "- capbot: capacity: CapBot SRAM 262144 B, CapBot flash 995328 B; capacity unknown: VM is flash and RAM " \
+           "together, a share of neither" in markdown
 
 
 def test_symbols_lists_the_largest_section_and_symbol_changes(compared):

@@ -39,6 +39,8 @@ ALLOWED: dict[tuple[str, str], tuple[set[str], str]] = {
     ("generator/inspector/page.py", "asset"): ({"TEMPLATES.joinpath('inspect', name).read_text"},
                                                "the inspector page's script and style, package files"),
     ("generator/targets/__init__.py", "generate"): ({"source.read_bytes"}, "a runtime file copied into a target"),
+    ("generator/targets/capbot.py", "values"): ({"QEMU.joinpath('m4.flags').read_text"},
+                                                "the bare-metal CapBot build's compiler flags, a package file"),
     ("generator/footprint/measure.py", "runtime_names"): ({"source.read_text"}, "the C runtime's own sources"),
     ("generator/footprint/measure.py", "source_sizes"): ({"(folder / n).read_bytes"}, "the runtimes' own sources"),
     ("generator/footprint/kilobot_board/__init__.py", "board_path"): (

@@ -144,7 +144,8 @@ def test_every_trace_is_accepted_by_every_local_supervisor(drawn):
 # use: the Python ones import the application and step it, the C one builds with its Makefile and
 # runs, the Kilobot one builds with its Makefile against the real kilolib (flash-only and
 # streaming), the CapBot sources compile for the Cortex-M4F against firmware/capbot's Zephyr
-# declarations, the ARGoS controller compiles (-fsyntax-only) against the real ARGoS headers.
+# declarations and its qemu/ Makefile builds the bare-metal image (validating and minimal), the
+# ARGoS controller compiles (-fsyntax-only) against the real ARGoS headers.
 STRICT_C = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 ARM = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16"]
 LUA_INCLUDE = Path("/usr/include/lua5.3")     # an ARGoS built with Lua includes <lua.h> from its headers
@@ -180,7 +181,8 @@ def build_capbot(out, compiled, _tools):
     limits = c_harness.limits(compiled)
     return next(filter(None, (run(["arm-none-eabi-gcc", *STRICT_C, *ARM, *limits, "-I", str(qemu_harness.CAPBOT),
                                    "-I", "src", "-c", str(source), "-o", source.stem + ".o"], out)
-                              for source in sorted((out / "src").glob("*.c")))), None)
+                              for source in sorted((out / "src").glob("*.c")))), None) or next(filter(None, (
+        run(["make", "-s", "-C", "qemu", *profile], out) for profile in ([], ["MINIMAL=1"]))), None)   # its qemu/ build
 
 
 def build_argos(out, compiled, tools):

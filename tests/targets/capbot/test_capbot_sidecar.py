@@ -4,9 +4,10 @@ CMakeLists.txt copies the sidecar gen writes beside the ELF its build links (bui
 
 No Zephyr SDK is installed here: CMake configures the generated CMakeLists.txt against a stand-in
 Zephyr package (what it needs of Zephyr's: the ``app`` target, CONFIG_KERNEL_BIN_NAME), which is
-all the copy depends on; the ELF put at build/zephyr/zephyr.elf is the generated sources linked
-bare-metal for QEMU's Cortex-M4 (firmware/capbot/, as mk/capbot.mk links them), whose indirect
-calls the CapBot record declares."""
+all the copy depends on; the ELF put at build/zephyr/zephyr.elf (with its .su files) is the
+generated sources linked bare-metal for QEMU's Cortex-M4 by the project's own qemu/Makefile,
+whose indirect calls the CapBot record declares. The bare-metal build is measured where it is
+built too, as the README shows it: beside the sidecar's copy that build leaves."""
 
 import json
 import re
@@ -26,7 +27,7 @@ CAPBOT = FIRMWARE / "capbot"
 
 
 def _tools() -> None:
-    missing = [tool for tool in ("cmake", "arm-none-eabi-gcc", "arm-none-eabi-objdump")
+    missing = [tool for tool in ("cmake", "arm-none-eabi-gcc", "arm-none-eabi-objdump", "qemu-system-arm")
                if shutil.which(tool) is None]
     if missing:
         pytest.skip("needs %s" % ", ".join(missing))
@@ -41,28 +42,36 @@ def test_the_build_leaves_the_sidecar_beside_the_elf_and_footprint_reads_it(tmp_
     (zephyr / "ZephyrConfig.cmake").write_text(ZEPHYR_STAND_IN)
     subprocess.run(["cmake", "-S", ".", "-B", "build", "-DZephyr_DIR=%s" % zephyr], cwd=folder, check=True,
                    capture_output=True)
+    both = subprocess.run(["cmake", "-S", ".", "-B", "both", "-DZephyr_DIR=%s" % zephyr, "-DSVM_MINIMAL=ON",
+                           "-DSVM_LEARNED=ON"], cwd=folder, capture_output=True, text=True)
+    assert both.returncode != 0 and "SVM_MINIMAL and SVM_LEARNED: the minimal profile is built without" in both.stderr
+    minimal = subprocess.run(["cmake", "-S", ".", "-B", "minimal", "-DZephyr_DIR=%s" % zephyr, "-DSVM_MINIMAL=ON"],
+                             cwd=folder, capture_output=True, text=True)
+    assert minimal.returncode == 0, minimal.stderr
     beside = folder / "build" / "zephyr"
     assert (beside / "zephyr.footprint.json").read_bytes() == (folder / "worker.footprint.json").read_bytes()
 
-    flags = re.findall(r"-DSVM_(?:MAX|WITH)_[A-Z_]*=[0-9]+", (folder / "CMakeLists.txt").read_text())
-    sources = [str(p) for p in sorted((folder / "src").glob("*.c")) if p.name != "main.c"]
-    subprocess.run(["arm-none-eabi-gcc", "@%s" % (CAPBOT / "m4.flags"), *flags, "-DSVM_APP=worker",
-                    '-DSVM_APP_HEADER="worker_tables.h"', "-I%s" % (folder / "src"), "-I%s" % CAPBOT,
-                    "-T", str(CAPBOT / "mps2_an386.ld"),
-                    *(str(CAPBOT / n) for n in ("startup.c", "app_qemu.c", "capbot_qemu.c")), *sources,
-                    "-o", str(beside / "zephyr.elf")], cwd=folder, check=True, capture_output=True)
+    subprocess.run(["make", "-s", "-C", "qemu"], cwd=folder, check=True, capture_output=True)
+    shutil.copy(folder / "qemu" / "worker.elf", beside / "zephyr.elf")
+    for su in (folder / "qemu").glob("*.su"):
+        shutil.copy(su, beside)
 
     readme = (folder / "README.md").read_text()
     measure = readme.split("## Measure\n", 1)[1]
-    command = re.search(r"```sh\n(.*?)\n```", measure, re.S).group(1)
-    assert command == "swarmvm footprint build/zephyr/zephyr.elf"
-    result = subprocess.run([*command.split(), "--json", str(tmp_path / "fp.json")], cwd=folder,
-                            capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
-    image = json.loads((tmp_path / "fp.json").read_text())["images"][0]
-    assert image["target"] == "capbot" and "unknown" not in image["stack"]
-    assert image["stack"]["step"] > 0 and image["stack"]["total"] > image["stack"]["step"]
-    assert image["indirect"]["svm_put_decimal"] == ["to_stdout", "to_stderr"]
+    zephyr, bare_metal = re.findall(r"```sh\n(.*?)\n```", measure, re.S)
+    assert zephyr == "swarmvm footprint build/zephyr/zephyr.elf"
+    assert bare_metal == ("swarmvm footprint qemu/worker.elf\n"
+                          "swarmvm footprint qemu/worker.elf --cycles qemu/worker.footprint.json")
+    for command in (zephyr, *bare_metal.splitlines()):
+        result = subprocess.run([*command.split(), "--json", str(tmp_path / "fp.json")], cwd=folder,
+                                capture_output=True, text=True)
+        assert result.returncode == 0, (command, result.stderr)
+        image = json.loads((tmp_path / "fp.json").read_text())["images"][0]
+        assert image["target"] == "capbot" and "unknown" not in image["stack"]
+        assert image["stack"]["step"] > 0 and image["stack"]["total"] > image["stack"]["step"]
+        assert image["indirect"]["svm_put_decimal"] == ["to_stdout", "to_stderr"]
+        assert ("cycles" in image) == ("--cycles" in command)
+    assert image["cycles"]["steps"] == 20 and image["cycles"]["worst"] >= image["cycles"]["mean"] > 0
 
 
 def test_the_sidecar_script_fits_the_bare_metal_run():
