@@ -563,22 +563,22 @@ uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
 #ifndef SVM_TRUSTED_IMAGE
 static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
-    /* Native ints (16 bits on AVR) and a pointer walk: no truncation or index sum per byte. */
+    /* A native int (16 bits on AVR) for the sum: no truncation per byte. */
     unsigned crc = SVM_CRC16_INIT;
-    const uint8_t *p = image, *end = image + length;
+    uint16_t i = 0;
 #if SVM_CRC_TABLE
-    for (; end - p >= 4; p += 4) {
-        crc ^= (unsigned)PEEK(source, p) | (unsigned)PEEK(source, p + 1) << 8;
-        crc = crc_table4[crc & 0xFFu] ^ crc_table3[crc >> 8] ^ crc_table2[PEEK(source, p + 2)] ^
-              crc_table[PEEK(source, p + 3)];
+    for (; (uint32_t)i + 4u <= length; i += 4u) {     /* uint32_t: no wrap where int has 16 bits */
+        crc ^= (unsigned)PEEK(source, image + i) | (unsigned)PEEK(source, image + i + 1) << 8;
+        crc = crc_table4[crc & 0xFFu] ^ crc_table3[crc >> 8] ^ crc_table2[PEEK(source, image + i + 2)] ^
+              crc_table[PEEK(source, image + i + 3)];
     }
-    for (; end - p >= 2; p += 2) {
-        crc ^= (unsigned)PEEK(source, p) | (unsigned)PEEK(source, p + 1) << 8;
+    for (; (uint32_t)i + 2u <= length; i += 2u) {
+        crc ^= (unsigned)PEEK(source, image + i) | (unsigned)PEEK(source, image + i + 1) << 8;
         crc = crc_table2[crc & 0xFFu] ^ crc_table[crc >> 8];
     }
 #endif
-    for (; p != end; p++) {
-        crc = crc_byte(crc, PEEK(source, p));
+    for (; i < length; i++) {
+        crc = crc_byte(crc, PEEK(source, image + i));
     }
     return (uint16_t)crc;
 }
@@ -634,6 +634,7 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
     const uint8_t *h = lay->header;
     uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
     uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
+    int accepted;
     uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
     uint16_t expected_first = 0, expected_succ = 0, alphabet = (uint16_t)SUPS_AT(m);
     const uint8_t *st = image + lay->states_at, *targets = image + lay->targets_at;
@@ -663,7 +664,10 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
                 return SVM_ERR_LAYOUT;
             }
             expected_succ = (uint16_t)(succ + defined);
-            target = targets + (succ << (width - 1u));
+            target = targets + succ;
+            if (width != 1u) {
+                target += succ;     /* two bytes a target (the width is 1 or 2: validate) */
+            }
             for (k = 0; k < defined; k++, target += width) {
                 unsigned local = PEEK(source, target);
                 if (width != 1u) {
@@ -676,7 +680,12 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
         }
         expected_first = (uint16_t)(first + count);
     }
-    return expected_first == total_states && expected_succ == total_trans ? SVM_OK : SVM_ERR_LAYOUT;
+    /* Accepted when the records account for the header's states and transitions. Eva keeps
+     * that path apart from the refusals (split), so that load's test of the result tells it what
+     * an accepted image's layout holds. */
+    accepted = expected_first == total_states && expected_succ == total_trans;
+    //@ split accepted;
+    return accepted ? SVM_OK : SVM_ERR_LAYOUT;
 }
 
 /* Whether `c` may be part of an event name: letters, digits and '_' (the input languages' rule). */
@@ -754,7 +763,7 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
         return SVM_ERR_LAYOUT;
     }
 #if SVM_MASK_EXACT
-    if (m != SVM_MASK_BYTES) {
+    if (h[SVM_AT_MASK_BYTES] != SVM_MASK_BYTES) {     /* the header's byte, as the limits below */
         return SVM_ERR_LIMITS;
     }
 #endif
@@ -791,16 +800,17 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
         }
     }
     if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
-        if (section_end(section_end(pos, e, 1u, end), states, 2u, end) == PAST_END) {
+        uint16_t order = pos, order_end = section_end(pos, e, 1u, end), k;
+        if (order_end == PAST_END || section_end(order_end, states, 2u, end) == PAST_END) {
             return SVM_ERR_LAYOUT;
         }
-        for (i = 0; i < e; i++, pos++) {      /* each event index below e, once: a permutation */
-            uint8_t index = rd_raw(image, source, pos), k;
+        for (; pos < order_end; pos++) {      /* each event index below e, once: a permutation */
+            uint8_t index = rd_raw(image, source, pos);
             if (index >= e) {
                 return SVM_ERR_LAYOUT;
             }
-            for (k = 0; k < i; k++) {
-                if (PEEK(source, image + pos - 1u - k) == index) {
+            for (k = order; k < pos; k++) {
+                if (PEEK(source, image + k) == index) {
                     return SVM_ERR_LAYOUT;
                 }
             }
@@ -816,9 +826,10 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
     if (pos != end) {
         return SVM_ERR_LAYOUT;
     }
-    /* (Each test is left out when the limit is the field's range: it could not fail.) */
+    /* (Tested on the header's bytes, which install copies: Eva then bounds the VM's counts. Each
+     * test is left out when the limit is the field's range: it could not fail.) */
 #if SVM_MAX_EVENTS < SVM_FORMAT_MAX_EVENTS
-    if (e > SVM_MAX_EVENTS) {
+    if (h[SVM_AT_NUM_EVENTS] > SVM_MAX_EVENTS) {
         return SVM_ERR_LIMITS;
     }
 #endif
@@ -868,6 +879,8 @@ SVM_COLD void svm_init(svm_vm_t *vm)
 {
     uint8_t *raw = (uint8_t *)vm;
     uint16_t i;
+    /* Eva: unrolled, so that it sees every byte written (a VM on the stack starts unknown). */
+    //@ loop unroll sizeof(svm_vm_t);
     for (i = 0; i < sizeof *vm; i++) {
         raw[i] = 0;
     }
@@ -1112,7 +1125,8 @@ static SVM_INLINE void install(svm_vm_t *vm, const uint8_t *image, uint8_t sourc
     vm->num_events = lay->header[SVM_AT_NUM_EVENTS];
     vm->num_supervisors = lay->header[SVM_AT_NUM_SUPERVISORS];
     vm->width = lay->header[SVM_AT_STATE_WIDTH];
-    vm->mask_bytes = lay->header[SVM_AT_MASK_BYTES];
+    /* The header's mask width as validate checked it: ceil(E / 8), the build's in an exact build. */
+    vm->mask_bytes = (uint8_t)(SVM_MASK_EXACT ? SVM_MASK_BYTES : (vm->num_events + 7u) / 8u);
     svm_reset(vm);
 }
 
@@ -1514,7 +1528,7 @@ static uint8_t select_event(svm_vm_t *vm, mask_t enabled, uint8_t count)
 #if SVM_WITH_FIRST || SVM_WITH_LEARNED
     uint8_t bytes[SVM_MASK_BYTES];
     if (policy == SVM_POLICY_LEARNED || policy == SVM_POLICY_FIRST) {
-        mask_store(bytes, enabled, VM_MASK_BYTES(vm));
+        mask_store(bytes, enabled, SVM_MASK_BYTES);    /* past the image's events: 0 */
     }
 #endif
 #if SVM_WITH_LEARNED
@@ -1580,12 +1594,15 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
     for (pass = SVM_WITH_PUBLIC ? 0u : 1u; pass < 2u; pass++, todo = second) {
         for (event = 0, bit = 1u; todo != 0u; todo = (mask_t)(todo >> 1), bit = (mask_t)(bit << 1), event++) {
             uint8_t occurs;
+#if SVM_WITH_BINDINGS
+            svm_check_fn check;
+#endif
             if (!(todo & 1u)) {
                 continue;
             }
 #if SVM_WITH_BINDINGS
-            if (event < cap && bindings[event].check != 0) {
-                occurs = bindings[event].check(bindings[event].data) != 0;
+            if (event < cap && (check = bindings[event].check) != 0) {     /* read once */
+                occurs = check(bindings[event].data) != 0;
             } else
 #endif
             {
@@ -1599,7 +1616,7 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
     return current;
 #else
     svm_dispatch_fn dispatch = vm->dispatch;
-    uint8_t pass, i, current[SVM_MASK_BYTES];
+    uint8_t pass, i, at, current[SVM_MASK_BYTES];
     cursor_t c;
     for (i = 0; i < SVM_MASK_BYTES; i++) {
         current[i] = 0;
@@ -1607,16 +1624,19 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
     /* Without the public-first pass (SVM_WITH_PUBLIC = 0) `first` is empty: one pass. */
     for (pass = SVM_WITH_PUBLIC ? 0u : 1u, cursor_start(&c, SVM_WITH_PUBLIC ? first : second); pass < 2u;
          pass++, cursor_start(&c, second)) {
-        for (; cursor_any(&c); cursor_skip_byte(&c)) {
+        for (at = 0; at < SVM_MASK_BYTES; at++, cursor_skip_byte(&c)) {     /* a zero byte polls none */
             uint8_t todo = cursor_byte(&c), bit = 1, event = c.base, occurred = 0;
             for (; todo != 0u; todo = (uint8_t)(todo >> 1), bit = (uint8_t)(bit << 1), event++) {
                 uint8_t occurs;
+#if SVM_WITH_BINDINGS
+                svm_check_fn check;
+#endif
                 if (!(todo & 1u)) {
                     continue;
                 }
 #if SVM_WITH_BINDINGS
-                if (event < cap && bindings[event].check != 0) {
-                    occurs = bindings[event].check(bindings[event].data) != 0;
+                if (event < cap && (check = bindings[event].check) != 0) {     /* read once */
+                    occurs = check(bindings[event].data) != 0;
                 } else
 #endif
                 {
@@ -1626,7 +1646,7 @@ static SVM_INLINE mask_t poll(svm_vm_t *vm, mask_t first, mask_t second)
                     occurred |= bit;
                 }
             }
-            current[c.base >> 3] |= occurred;
+            current[at] |= occurred;
         }
     }
     return mask_load(current);
@@ -1860,7 +1880,7 @@ uint8_t svm_has_names(const svm_vm_t *vm)
 SVM_COLD uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, uint8_t cap)
 {
     uint16_t pos;
-    uint8_t len, i;
+    uint8_t len, i, n;
     if (cap != 0u) {
         buf[0] = '\0';
     }
@@ -1869,11 +1889,12 @@ SVM_COLD uint8_t svm_event_name(const svm_vm_t *vm, uint8_t event, char *buf, ui
     }
     pos = name_at(vm->image, VM_SOURCE(vm), vm->names_at, event);
     len = RD(vm, pos);
-    for (i = 0; i < len && (uint16_t)i + 1u < cap; i++) {
-        buf[i] = (char)RD(vm, pos + 1u + i);
-    }
     if (cap != 0u) {
-        buf[i] = '\0';
+        n = len < cap ? len : (uint8_t)(cap - 1u);     /* the name, cut to leave room for '\0' */
+        for (i = 0; i < n; i++) {
+            buf[i] = (char)RD(vm, pos + 1u + i);
+        }
+        buf[n] = '\0';
     }
     return len;
 }

@@ -264,7 +264,7 @@ int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_
 {
     uint8_t e;
     uint16_t i, size = svl_policy_size(vm);
-    if (cap < size) {
+    if (cap < size || baseline_shift >= 32u) {     /* floor_shift's shift is below 32 */
         return -1;
     }
     p->theta = theta;
@@ -436,8 +436,10 @@ int svl_policy_load(svl_policy_t *p, const uint32_t *words, uint16_t count)
     p->baseline_shift = (uint8_t)words[5];
     p->baseline = (int32_t)words[6];
     p->updates = words[7];
+    /* The preferences are within THETA_LIMIT (plausible): clamp() changes none of them, and makes
+     * the bound the step's sums rely on evident to Eva (docs/proof.md). */
     for (i = 0; i < p->num_theta; i++) {
-        p->theta[i] = (int32_t)words[SVL_POLICY_HEADER_WORDS + i];
+        p->theta[i] = clamp((int32_t)words[SVL_POLICY_HEADER_WORDS + i], THETA_LIMIT);
     }
     p->pending = 0;
     return 0;

@@ -96,7 +96,8 @@ typedef struct svl_policy {
 uint16_t svl_policy_size(const svm_vm_t *vm);
 
 /* Bind to the image loaded in `vm` with `theta` (capacity `cap`, zeroed here). Returns 0, or
- * -1 when cap < svl_policy_size(vm). */
+ * -1 when cap < svl_policy_size(vm) or baseline_shift >= 32 (a shift the baseline's update
+ * cannot make: undefined in C). */
 int svl_policy_init(svl_policy_t *p, const svm_vm_t *vm, int32_t *theta, uint16_t cap,
                     uint16_t inv_temp_q8, uint16_t rate_q16, uint8_t baseline_shift);
 

@@ -37,7 +37,7 @@ uint8_t svm_stream_feed(svm_stream_t *stream, const uint8_t chunk[SVM_CHUNK_BYTE
         if (stream->length != 0u && stream->received == stream->length) {
             break;  /* padding after the image's last byte */
         }
-        if (stream->received == stream->capacity) {
+        if (stream->received >= stream->capacity) {     /* (never past it: >= makes that evident) */
             return abandon(stream, SVM_STREAM_TOO_LARGE);
         }
         stream->buffer[stream->received++] = chunk[1u + i];
