@@ -352,12 +352,14 @@ static SVM_MASK_INLINE void cursor_skip_byte(cursor_t *c)
 /* Clear bit `bit` of the current byte. */
 static SVM_MASK_INLINE void cursor_clear(cursor_t *c, uint8_t bit) { c->rest = (mask_t)(c->rest ^ bit); }
 
+#if !FLAT_MASKS       /* flat masks fire the selected event from the flat loop, with no cursor */
 /* A cursor over the one event `e` (no shift of a whole mask). */
 static SVM_MASK_INLINE void cursor_single(cursor_t *c, uint8_t e)
 {
     c->rest = (mask_t)(1u << (e & 7u));
     c->base = (uint8_t)(e & 0xF8u);
 }
+#endif
 
 #else /* MASK_ARRAY */
 
@@ -602,13 +604,13 @@ static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source,
 }
 #endif
 
-/* The little-endian u16 at `p` in RAM. */
+#ifndef SVM_TRUSTED_IMAGE
+/* The little-endian u16 at `p` in RAM (the header's fields, read by validation only). */
 static SVM_INLINE uint16_t le16(const uint8_t *p)
 {
     return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
 }
 
-#ifndef SVM_TRUSTED_IMAGE
 /* Whether byte `last` of an event mask (its last byte) has a bit at or above event `e` (in the
  * padding): an event the image does not have. */
 static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)

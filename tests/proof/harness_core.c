@@ -8,7 +8,7 @@
  * accepted image, every event bound (an action, and a check answering an unknown 0 or 1 on the
  * uncontrollable ones), an unknown priority list, unknown options and seed, svm_reset, and an
  * unknown number of steps in a loop (Eva widens it: not an unrolled count). The build's limits
- * and features come from the -D flags of proof/configs.mk, one configuration per target build. */
+ * and features come from the -D flags of tests/proof/prove.py's CONFIGS, one configuration per target build. */
 #include "__fc_builtin.h"
 #include "swarmvm.h"
 

@@ -94,15 +94,8 @@ def test_generation_is_deterministic_and_path_free(tmp_path):
 MINIMAL = ("-DSVM_TRUSTED_IMAGE=energy_worker_image", "-DSVM_WITH_PUBLIC=0")     # CMakeLists.txt's SVM_MINIMAL=ON
 
 
-# runtime_c/swarmvm.c in the minimal profile leaves two static helpers unused (cursor_single, le16),
-# which clang's -Wunused-function reports on the host; gcc (Zephyr's, arm-none-eabi's) does not.
-CLANG_MINIMAL = pytest.mark.xfail(strict=True, reason="runtime_c/swarmvm.c: unused static functions under "
-                                  "SVM_TRUSTED_IMAGE (clang -Wunused-function)")
-
-
 @pytest.mark.parametrize("compiler, learned", [
-    pytest.param(compiler, variant, id="%s-%s" % (compiler, name),
-                 marks=[CLANG_MINIMAL] if (compiler, name) == ("clang", "minimal") else [])
+    pytest.param(compiler, variant, id="%s-%s" % (compiler, name))
     for compiler in ("gcc", "clang", "arm-none-eabi-gcc")
     for name, variant in (("plain", ()), ("learned", ("-DSVM_LEARNED=1", "-DSVM_MAX_STATES=16")), ("minimal", MINIMAL))])
 def test_every_source_compiles_without_warning(app, compiler, learned, tmp_path):
