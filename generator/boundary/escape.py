@@ -20,6 +20,7 @@ from typing import Any
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _IDENTIFIER_PART = re.compile(r"[A-Za-z0-9_]*\Z")
+_MAKE_WORD = re.compile(r"[A-Za-z0-9_+=,./:@-]+\Z")
 # Characters a comment keeps as they are in every language swarmvm writes comments in (C, C++,
 # Python, Make, CMake, YAML, .gen, XML): none can end or nest a comment (``*/``, ``/*``, and
 # ``--`` is split), continue a line (a trailing backslash), form a trigraph (``??/``) or end a
@@ -187,6 +188,16 @@ def identifier_part(text: str) -> str:
     return text
 
 
+def make_words(text: str) -> str:
+    """``text``'s words, one space apart, when each is a word Make and the shell take as it is
+    (letters, digits and ``_+=,./:@-``: compiler flags, file names of the package), else
+    UnsafeText: a Makefile's variable gets no quoting, so nothing that would need it is written."""
+    words = text.split() if isinstance(text, str) else None
+    if not words or not all(_MAKE_WORD.match(word) for word in words):
+        raise UnsafeText("%s: not words a Makefile can hold unquoted" % terminal(repr(text)))
+    return " ".join(words)
+
+
 def number(value: object, width: int = 0) -> str:
     """An integer as decimal text, left-justified to ``width``; UnsafeText for anything else (a
     str that looks like a number included), so a template cannot pass text off as a number."""
@@ -206,5 +217,6 @@ FILTERS = {
     "markdown": markdown,
     "ident": identifier,
     "ident_part": identifier_part,
+    "make_words": make_words,
     "num": number,
 }

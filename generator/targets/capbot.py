@@ -17,7 +17,7 @@ from .values import C_RUNTIME_GROUPS, c_copies, features, has_public_inputs, min
 # the generated prj.conf, written from this figure. 2 KB is five times the deepest path measured of
 # the bare-metal build of the same sources (main 388 B on the bundled example, docs/footprint.md,
 # "Stack"), leaving Zephyr's logging call from the step loop and a controller's own locals room.
-LIMITS = RobotLimits("CapBot", flash=0x000F3000, sram=256 * 1024, min_stack=2048)
+LIMITS = RobotLimits("CapBot", flash=0x000F3000, sram=0x40000, min_stack=2048)
 
 # The bare-metal QEMU build of the generated sources (swarmvm.capbot_qemu: firmware/capbot/ in the
 # checkout, package data in a wheel), copied into the project's qemu/ beside the Makefile gen
@@ -49,7 +49,7 @@ def values(compiled: Compiled) -> dict[str, object]:
     public_inputs = has_public_inputs(compiled.tables)
     return dict(runtime_sources=sources("core"), page_sources=sources("logic_page"), learned_sources=sources("learn"),
                 store_sources=sources("store_zephyr"), features=features(compiled.tables.probs is not None, names=True),
-                main_stack=LIMITS.min_stack, m4_flags=" ".join(QEMU.joinpath("m4.flags").read_text().split()),
+                main_stack=LIMITS.min_stack, m4_flags=QEMU.joinpath("m4.flags").read_text(),
                 public_inputs=public_inputs, minimal_features=minimal_features(public_inputs), app_steps=APP_STEPS,
                 **file_order(compiled))
 

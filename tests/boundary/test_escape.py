@@ -89,6 +89,33 @@ def test_an_identifier_is_validated_not_escaped(bad):
         escape.identifier(bad)
 
 
+@settings(max_examples=40, deadline=None)
+@given(text=st.lists(st.one_of(HOSTILE, st.sampled_from(["-Os", "-mcpu=cortex-m4", "--specs=rdimon.specs", "-Wl,--gc-sections",
+                                                         "@m4.flags", "$(CC)", "a#b", "-DX='1'", "\\"])),
+                         max_size=4).map(" ".join))
+def test_make_words_are_read_back_by_make_and_the_shell_as_given(text, tmp_path_factory):
+    """Words make_words lets through reach a recipe's command line unchanged (GNU make, then
+    sh); anything else is refused: no reference, comment, quote or line break gets in."""
+    try:
+        words = escape.make_words(text)
+    except escape.UnsafeText:
+        assert not text.split() or any(not re.fullmatch(r"[A-Za-z0-9_+=,./:@-]+", w) for w in text.split())
+        return
+    makefile = tmp_path_factory.mktemp("make_words") / "Makefile"
+    makefile.write_text("X = %s\nall:\n\t@printf '%%s\\n' $(X)\n" % words)
+    out = subprocess.run(["make", "-s", "-f", str(makefile)], capture_output=True, text=True, check=True,
+                         env={"PATH": "/usr/bin:/bin"})
+    assert out.stdout.split("\n")[:-1] == text.split()
+
+
+def test_make_words_take_the_capbot_compiler_flags():
+    flags = "-mcpu=cortex-m4 -mthumb\n-std=c99 -Wall\n--specs=rdimon.specs -Wl,--gc-sections\n"
+    assert escape.make_words(flags) == "-mcpu=cortex-m4 -mthumb -std=c99 -Wall --specs=rdimon.specs -Wl,--gc-sections"
+    for bad in ("", "-DX=$(shell rm)", "a b#c", "-D'x'", None):
+        with pytest.raises(escape.UnsafeText):
+            escape.make_words(bad)
+
+
 def test_identifier_parts_and_numbers():
     assert escape.identifier_part("1abc") == "1abc" and escape.identifier("EV_x") == "EV_x"
     assert escape.identifier_part("") == ""       # the event EV_ (tests/corpus/nadzoru2/flipflop_S.yaml)

@@ -7,6 +7,7 @@ minimal flash profile. The README's commands are run as written; every name a us
 builds, in both profiles, or is refused in one line."""
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -47,12 +48,17 @@ def readme_commands(folder, heading):
             if "qemu" in line]
 
 
+# A user's shell: none of the variables through which `make test` (whose child this suite may
+# be) would make these commands a sub-make, printing make[1]'s directories and messages.
+USER_ENV = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MAKELEVEL", "MFLAGS", "MAKEFILES")}
+
+
 def run(command, folder):
     """(exit status, stdout, stderr) of a command whose output QEMU's semihosting writes: to files,
-    not pipes (qemu_harness.run says why)."""
+    not pipes (qemu_harness.run says why), run as from a user's shell."""
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         status = subprocess.run(command, cwd=folder, stdout=out, stderr=err, stdin=subprocess.DEVNULL,
-                                timeout=120).returncode
+                                env=USER_ENV, timeout=120).returncode
         out.seek(0)
         err.seek(0)
         return status, out.read(), err.read()
