@@ -1,6 +1,8 @@
 # `make prove` (issue 41, docs/proof.md): Frama-C's Eva over the C runtime from the harnesses of
-# tests/proof/, one configuration per target build (tests/proof/prove.py's CONFIGS: limits,
-# features, the target's int and pointer sizes), the alarms compared with the checked-in list
+# tests/proof/ (the VM core, stream receiver, logic page, learned policy, store, Kilobot glue and
+# Nadzoru C API), one configuration per target build of each (tests/proof/prove.py's CONFIGS:
+# limits, features, the target's int and pointer sizes; fifteen by default, about two minutes
+# on two cores), the alarms compared with the checked-in list
 # tests/proof/alarms.txt: a new alarm fails, and so does a listed one that is gone.
 # PROVE_CONFIGS="host kilobot" runs some; `make prove-update` rewrites the list (classifications
 # of the lines that stay are kept, new lines come in unclassified). frama-c-base: scripts/setup.sh.

@@ -697,16 +697,22 @@ static uint8_t name_char(uint8_t c)
 }
 
 #if SVM_WITH_NAMES
-/* Whether the name whose length byte is at `name` equals one of the names from `first` (the
- * section's start) up to it. The compiler writes each event's name once; a name given twice
- * would make binding by name ambiguous. Only in builds that read names (SVM_WITH_NAMES): the
- * Kilobot's compiled-in build never reads them, and its VM core's flash budget cannot spare
- * the check (docs/image-format.md gives its size). */
-static SVM_COLD uint8_t name_repeats(uint8_t source, const uint8_t *first, const uint8_t *name)
+/* Whether the name whose length byte is at `pos` equals one of the names from `at` (the section's
+ * start) up to it, which validate checked earlier: they follow each other up to `pos`. The
+ * compiler writes each event's name once; a name given twice would make binding by name
+ * ambiguous. Only in builds that read names (SVM_WITH_NAMES): the Kilobot's compiled-in build
+ * never reads them, and its VM core's flash budget cannot spare the check (docs/image-format.md
+ * gives its size). The walk goes by position (`at < pos`), so each length byte it reads is
+ * evidently inside the names already checked. */
+static SVM_COLD uint8_t name_repeats(const uint8_t *image, uint8_t source, uint16_t at, uint16_t pos)
 {
-    for (; first != name; first += 1u + PEEK(source, first)) {
+    const uint8_t *name = image + pos;
+    uint8_t n = PEEK(source, name);
+    while (at < pos) {
+        const uint8_t *first = image + at;
         uint8_t k = PEEK(source, first);
-        if (k == PEEK(source, name)) {
+        at = (uint16_t)(at + 1u + k);
+        if (k == n) {
             while (k != 0u && PEEK(source, first + k) == PEEK(source, name + k)) {
                 k--;
             }
@@ -790,7 +796,7 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
                 return SVM_ERR_LAYOUT;
             }
 #if SVM_WITH_NAMES
-            if (name_repeats(source, image + lay->names_at, image + pos)) {
+            if (name_repeats(image, source, lay->names_at, pos)) {
                 return SVM_ERR_LAYOUT;
             }
 #endif

@@ -128,7 +128,9 @@ uint8_t svm_kilobot_receive(message_t *message, distance_measurement_t *distance
     }
 #endif
     if (message->type == NORMAL) {
-        /* at most one received event per payload: gen refuses messages that agree on 9 bytes */
+        /* At most one received event per payload: gen refuses messages that agree on 9 bytes.
+         * An Eva directive (docs/proof.md): the table holds one entry per public event, then the end. */
+        //@ loop unroll SVM_MAX_EVENTS + 1u;
         for (wire = svm_kilobot_wires; (event = wire_event(wire)) != SVM_KILOBOT_END; wire++) {
             if (SVM_FLASH_BYTE(&wire->received) && flash_compare(message->data, wire->wire, sizeof message->data) == 0) {
                 received[event >> 3] |= bit_of(event);
@@ -145,6 +147,8 @@ static const svm_kilobot_wire_t *next_pending(void)
 {
     const svm_kilobot_wire_t *wire, *chosen = 0;
     uint8_t event, later = 0;
+    /* An Eva directive (docs/proof.md): the table holds one entry per public event, then the end. */
+    //@ loop unroll SVM_MAX_EVENTS + 1u;
     for (wire = svm_kilobot_wires; (event = wire_event(wire)) != SVM_KILOBOT_END; wire++) {
         if (SVM_FLASH_BYTE(&wire->received) || !(pending[event >> 3] & bit_of(event))) {
             continue;

@@ -24,22 +24,24 @@ static uint16_t body_at(const svm_store_t *store, uint8_t slot)
     return (uint16_t)(slot_at(store, slot) + store->medium.block);
 }
 
-/* Whether a payload of `length` bytes fits a slot (and the medium's block is usable). */
-static int fits(const svm_store_t *store, uint16_t length)
+/* The medium's write block (1 .. SVM_STORE_MAX_BLOCK, a power of two) when a payload of
+ * `length` bytes fits a slot written in such blocks; 0 when the block is unusable or the payload
+ * does not fit. */
+static uint8_t fitting_block(const svm_store_t *store, uint16_t length)
 {
-    uint16_t block = store->medium.block;
+    uint8_t block = store->medium.block;
     if (block == 0u || block > SVM_STORE_MAX_BLOCK || (block & (block - 1u)) != 0u
-        || store->slot_size < block + BODY_FIXED) {
+        || store->slot_size < block + BODY_FIXED || length > store->slot_size - block - BODY_FIXED
+        || (uint32_t)block + ((uint32_t)length + BODY_FIXED + block - 1u) / block * block > store->slot_size) {
         return 0;
     }
-    return length <= store->slot_size - block - BODY_FIXED
-           && (uint32_t)block + ((uint32_t)length + BODY_FIXED + block - 1u) / block * block <= store->slot_size;
+    return block;
 }
 
 static uint16_t read16(const svm_store_t *store, uint16_t at)
 {
     const svm_store_medium_t *m = &store->medium;
-    return (uint16_t)(m->read(m->ctx, at) | (uint16_t)(m->read(m->ctx, (uint16_t)(at + 1u)) << 8));
+    return (uint16_t)(m->read(m->ctx, at) | (uint16_t)m->read(m->ctx, (uint16_t)(at + 1u)) << 8);
 }
 
 /* A slot's record when it is committed, fits the slot and its CRC agrees: 0 and its sequence
@@ -52,7 +54,7 @@ static int check_slot(const svm_store_t *store, uint8_t slot, uint32_t *sequence
         return -1;
     }
     *length = read16(store, (uint16_t)(at + BODY_LENGTH));
-    if (!fits(store, *length)) {
+    if (fitting_block(store, *length) == 0u) {
         return -1;
     }
     end = (uint16_t)(BODY_PAYLOAD + *length);
@@ -109,9 +111,9 @@ int svm_store_save(const svm_store_t *store, const uint8_t *data, uint16_t lengt
     const svm_store_medium_t *m = &store->medium;
     uint32_t sequence = 0;
     uint16_t old_length, at, body, end, crc = SVM_CRC16_INIT, i;
-    uint8_t block[SVM_STORE_MAX_BLOCK], b, slot_block = m->block;
+    uint8_t block[SVM_STORE_MAX_BLOCK], b, slot_block = fitting_block(store, length);
     int slot;
-    if (!fits(store, length)) {
+    if (slot_block == 0u) {
         return -1;
     }
     slot = newest(store, &sequence, &old_length);
@@ -119,7 +121,7 @@ int svm_store_save(const svm_store_t *store, const uint8_t *data, uint16_t lengt
     slot = slot == 0 ? 1 : 0;
     at = slot_at(store, (uint8_t)slot);
     body = body_at(store, (uint8_t)slot);
-    for (b = 0; b < slot_block; b++) {
+    for (b = 0; b < SVM_STORE_MAX_BLOCK; b++) {     /* the whole buffer: each write reads a prefix */
         block[b] = SVM_STORE_EMPTY;
     }
     /* 1. The target slot holds no record from here until its state byte is written last. */

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from swarmvm.compiler.pipeline import compile_inputs
+from swarmvm.targets.c import file_order
 from swarmvm.targets.values import features, has_public_inputs, minimal_features
 
 HERE = Path(__file__).resolve().parent
@@ -47,8 +48,16 @@ REACHED = "Frama_C_show_each_reached"
 LIMITS = ["-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=4", "-DSVM_MAX_STATES=32"]
 OFF = "-DSVM_WITH_BINDINGS=0 -DSVM_WITH_FIRST=0".split()
 # The minimal profile (swarmvm.h, SVM_TRUSTED_IMAGE): the image is the harness's proof_image, read
-# as from flash, its masks the build's; the rest of its flags come from its model (trusted_build).
+# as from flash, its masks the build's; the rest of its flags come from its model (model_build).
 TRUSTED = ("-DSVM_TRUSTED_IMAGE=proof_image", "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1")
+EXAMPLE = "examples/energy_worker/supervisor.yaml"
+# What each profile of a model's build (Config.profile) compiles in: whether the image keeps its
+# names (the streaming Kilobot matches a received image's events by name) and, from the targets'
+# generator (swarmvm.targets.values), the features of the generated program: `minimal` the
+# minimal profile (MINIMAL=1), `kilobot` the Kilobot's Makefile, `stream` its STREAM=1,
+# `learned` its LEARNED=1; `sct` the features docs/robots/kilobot.md builds a published program's
+# exact mode with (the binding table on).
+PROFILES = ("minimal", "kilobot", "stream", "learned", "sct")
 
 
 @dataclass(frozen=True)
@@ -63,9 +72,10 @@ class Config:
     machdep: str
     what: str = field(default="", compare=False)
     default: bool = True        # run by `make prove` (and `make test`) without --config
-    # The minimal profile's (harness_trusted.c): the model whose generated image is compiled in,
-    # its limits and features as the target's generator derives them (trusted_build).
+    # A harness that runs a generated image (proof_image.h, model_build): the model, and which of
+    # the targets' builds of it sets its limits and features (PROFILES).
     model: str = ""
+    profile: str = ""
 
 
 CONFIGS = (     # the slowest first: two run at a time
@@ -99,14 +109,40 @@ CONFIGS = (     # the slowest first: two run at a time
            " learned and weighted on; 16-bit int"),
     Config("kilobot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, "x86_16",
            "the Kilobot's `make MINIMAL=1` (templates/kilobot/Makefile.j2): the example's image compiled in"
-           " without names, run unchecked; 16-bit int", model="examples/energy_worker/supervisor.yaml"),
+           " without names, run unchecked; 16-bit int", model=EXAMPLE, profile="minimal"),
     Config("capbot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, "x86_32",
            "the CapBot's minimal profile (templates/capbot/qemu.mk.j2): the example's image compiled in,"
-           " run unchecked; 32-bit int", model="examples/energy_worker/supervisor.yaml"),
+           " run unchecked; 32-bit int", model=EXAMPLE, profile="minimal"),
     Config("capbot", "harness_core.c", ("swarmvm.c",),
            tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), "x86_32",
            "the CapBot build (templates/capbot/CMakeLists.txt.j2, SVM_LEARNED=ON): names on, learned and"
            " weighted on; 32-bit int and pointers as on the Cortex-M4"),
+    Config("sct", "harness_sct.c", ("swarmvm_sct.c", "swarmvm.c"), tuple(LIMITS), "x86_64",
+           "the Nadzoru 2 C API (swarmvm_sct.c) in canonical mode as the `c` target builds it: any image,"
+           " callbacks registered for any event number, any number of steps, resets and inits"),
+    Config("sct-exact", "harness_sct.c", ("swarmvm_sct.c", "swarmvm.c"),
+           ("-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_SCT_EXACT=1",
+            "-DSVM_SCT_RANDOM=rand_soft"), "x86_16",
+           "the C API's exact mode as docs/robots/kilobot.md builds a published Kilobot program: the example's"
+           " tables and file order, bindings on, draws from rand_soft; 16-bit int", model=EXAMPLE, profile="sct"),
+    Config("store", "harness_store.c", ("swarmvm_store.c", "swarmvm.c"), (), "x86_16",
+           "the two-slot store of learned parameters (swarmvm_store.c): any medium bytes, block, slot size and"
+           " base, saves and loads of any length, refused writes; 16-bit int"),
+    Config("kilobot-glue", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm.c"),
+           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"), "x86_16",
+           "the Kilobot glue (swarmvm_kilobot.c) of the generated program, `make`: unknown messages, ticks,"
+           " uid, options and seeds around the example's image; 16-bit int", model=EXAMPLE, profile="kilobot"),
+    Config("kilobot-glue-stream", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm_stream.c", "swarmvm.c"),
+           ("-I%s" % HERE, "-DSVM_STREAM=1"), "x86_16",
+           "the Kilobot glue of `make STREAM=1`: also image chunks of unknown bytes, matched, swapped in and"
+           " stepped", model=EXAMPLE, profile="stream"),
+    Config("kilobot-glue-learned", "harness_kilobot.c",
+           ("swarmvm_kilobot.c", "swarmvm_learn.c", "swarmvm_learn_store.c", "swarmvm_store.c", "swarmvm.c"),
+           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_LEARNED=1",
+            "-include", str(HERE / "kilobot_eeprom_stub.h")), "x86_16",
+           "the Kilobot glue of `make LEARNED=1` on the learning example: the policy, rewards of any value and"
+           " its EEPROM record (1 KB of unknown bytes)", model="examples/learning/supervisor.yaml",
+           profile="learned"),
 )
 BY_NAME = {c.name: c for c in CONFIGS}
 
@@ -149,30 +185,48 @@ def parse_csv(config: str, path: Path) -> list[Alarm]:
     return alarms
 
 
-def trusted_build(config: Config, work: Path) -> tuple[str, ...]:
-    """The minimal profile's build of `config.model`: its image, without names as the Kilobot
-    compiles it in, written as proof_image.h into a folder of the configuration's own; and the
-    flags of that folder, the image's limits and the features the targets' generator gives it
-    (swarmvm.targets.values: the generated program's, and no public-first pass for a model
-    without public uncontrollable events)."""
-    compiled = compile_inputs([str(ROOT / config.model)], names=False)
+def model_build(config: Config, work: Path) -> tuple[str, ...]:
+    """The generated build of `config.model` that a harness runs: its image (without names but in
+    the stream profile) as proof_image, and in exact mode the supervisor file's order tables as
+    the generated tables.c holds them (swarmvm.targets.c.file_order), written as proof_image.h into
+    a folder of the configuration's own; and the flags of that build: that folder, the image's
+    limits and the features of the configuration's profile (PROFILES), as the generated build has
+    them."""
+    if config.profile not in PROFILES:
+        raise SystemExit(f"prove: configuration {config.name}: profile {config.profile!r} is not one of {PROFILES}")
+    names = config.profile == "stream"
+    compiled = compile_inputs([str(ROOT / config.model)], names=names)
     image, tables = compiled.image, compiled.tables
     folder = work / (config.name + ".include")
     folder.mkdir(parents=True, exist_ok=True)
+    arrays: list[tuple[str, object]] = [("proof_image", image)]
+    if config.profile == "sct":
+        order = file_order(compiled)
+        arrays += [("svm_sct_file_" + k, order["file_" + k]) for k in ("events", "states", "start")]
     (folder / "proof_image.h").write_text(
-        "/* %s, generated by tests/proof/prove.py */\nconst uint8_t proof_image[%d] = {%s};\n"
-        % (config.model, len(image), ", ".join(str(b) for b in image)))
-    chosen = features(tables.probs is not None, names=False) + minimal_features(has_public_inputs(tables))
+        "/* %s, generated by tests/proof/prove.py */\n" % config.model
+        + "".join("const uint8_t %s[%d] = {%s};\n" % (n, len(b), ", ".join(map(str, b)))
+                  for n, b in arrays if isinstance(b, bytes)))
+    probabilistic = tables.probs is not None
+    chosen = dict(features(probabilistic, names=names))
+    if config.profile == "minimal":
+        chosen.update(minimal_features(has_public_inputs(tables)))
+    elif config.profile == "learned":
+        chosen["LEARNED"] = 1
+    elif config.profile == "sct":
+        chosen = dict(BINDINGS=1, NAMES=0, FIRST=0, WEIGHTED=0, LEARNED=0)
+    # the Makefile's LEARNED=1: room for states x controllable events
+    theta = ["-DSVM_KILOBOT_THETA=%d" % (tables.num_states * bin(tables.controllable).count("1"))]
     return ("-I%s" % folder, "-DSVM_MAX_EVENTS=%d" % tables.num_events,
             "-DSVM_MAX_SUPERVISORS=%d" % tables.num_supervisors, "-DSVM_MAX_STATES=%d" % tables.num_states,
-            *("-DSVM_WITH_%s=%d" % kv for kv in chosen))
+            *(theta if config.profile == "learned" else []), *("-DSVM_WITH_%s=%d" % kv for kv in chosen.items()))
 
 
 def analyse(config: Config, work: Path, extra: tuple[str, ...] = ()) -> Run:
     """Eva on one configuration (`extra`: more -D flags, e.g. the planted defect of the tests)."""
     work.mkdir(parents=True, exist_ok=True)
     if config.model:
-        extra = trusted_build(config, work) + extra
+        extra = model_build(config, work) + extra
     csv_path, log = work / f"{config.name}.csv", work / f"{config.name}.log"
     start = time.monotonic()
     with log.open("w") as out:
