@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional,
 
 from ..boundary.errors import TABLE_MAX_BYTES, read_input
 from ..boundary.output import write_outputs
+from ..boundary.termination import default_sigterm
 
 if TYPE_CHECKING:
     import pandas
@@ -122,8 +123,9 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> It
     else:
         # Leaving the pool, normally or by an exception (SIGTERM included, swarmvm.boundary.termination),
         # terminates its processes: a trial still running then stops, and its ARGoS with it,
-        # instead of running on orphaned.
-        with multiprocessing.Pool(min(workers, len(todo))) as pool:
+        # instead of running on orphaned. The workers take SIGTERM's default action (they end
+        # at once) rather than the verb's handler they are forked with.
+        with multiprocessing.Pool(min(workers, len(todo)), initializer=default_sigterm) as pool:
             yield from pool.imap_unordered(functools.partial(_keyed, run_trial), todo)
 
 
