@@ -17,12 +17,12 @@ import io
 import json
 import multiprocessing
 import shlex
+import signal
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 from ..boundary.errors import TABLE_MAX_BYTES, read_input
 from ..boundary.output import write_outputs
-from ..boundary.termination import default_sigterm
 
 if TYPE_CHECKING:
     import pandas
@@ -125,8 +125,15 @@ def _results(todo: List[Tuple[str, Any]], run_trial, workers: int, client) -> It
         # terminates its processes: a trial still running then stops, and its ARGoS with it,
         # instead of running on orphaned. The workers take SIGTERM's default action (they end
         # at once) rather than the verb's handler they are forked with.
-        with multiprocessing.Pool(min(workers, len(todo)), initializer=default_sigterm) as pool:
+        with multiprocessing.Pool(min(workers, len(todo)), initializer=_default_sigterm) as pool:
             yield from pool.imap_unordered(functools.partial(_keyed, run_trial), todo)
+
+
+def _default_sigterm() -> None:
+    """SIGTERM's default action again, in a pool's worker: it is forked with the verb's handler
+    (swarmvm.boundary.termination), which would unwind the verb's code in it, and the pool's
+    terminate() expects its workers to end at once."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def _keyed(run_trial: Callable[[Any], Tables], item: Tuple[str, Any]) -> Tuple[str, Tables]:

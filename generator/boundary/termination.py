@@ -37,10 +37,3 @@ def end_verbs_on_sigterm() -> Callable[[], None]:
         if received:
             signal.raise_signal(signal.SIGTERM)
     return restore
-
-
-def default_sigterm() -> None:
-    """SIGTERM's default action again, in a process forked from a verb (a pool's worker): it
-    inherits the verb's handler, which would unwind the verb's code in it, and the pool's
-    terminate() expects its workers to end at once."""
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)

@@ -83,9 +83,9 @@ def test_local_processes_are_bounded_and_never_more_than_the_trials(monkeypatch,
     from swarmvm.studies.sweep_options import MAX_PROCESSES
     started, real_pool = [], multiprocessing.Pool
 
-    def pool(processes):
+    def pool(processes, **options):
         started.append(processes)
-        return real_pool(processes)
+        return real_pool(processes, **options)
     monkeypatch.setattr(sweeps.multiprocessing, "Pool", pool)
     base = ["sweep", "uav", "-o", str(tmp_path / "out"), "--no-progress", "--rules", "least-confident",
             "--thresholds", "", "--taus", "20", "--runs", "2", "--weeks", "1", "--week-s", "1000", "--drones", "2",
