@@ -11,8 +11,12 @@
  * and features come from the -D flags of tests/proof/prove.py's CONFIGS, one configuration per target build. */
 #include "__fc_builtin.h"
 #include "swarmvm.h"
+#include "harness_load.h"
 
 void Frama_C_show_each_reached(void);
+#if PROOF_UNKNOWN_CALL
+int proof_unknown(void);
+#endif
 
 #ifndef PROOF_MAX_IMAGE
 #define PROOF_MAX_IMAGE 512
@@ -74,13 +78,19 @@ int main(void)
 #if SVM_WITH_LEARNED
     svm_set_chooser(&vm, choose, 0);
 #endif
+#if PROOF_UNKNOWN_CALL
+    /* tests/proof: a call of a function with neither code nor contract, which must fail the run. */
+    if (proof_unknown() != 0) {
+        return 1;
+    }
+#endif
 #if PROOF_PLANT
     /* tests/proof: a planted defect the comparison must catch (a read past the image). */
     if (image[(uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE)] == 0u) {
         return 1;
     }
 #endif
-    if (svm_load(&vm, image, length) != SVM_OK) {
+    if (proof_load(&vm, image, length) != SVM_OK) {
         return 0;
     }
 #if SVM_WITH_BINDINGS

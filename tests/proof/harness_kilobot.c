@@ -15,8 +15,9 @@
  * (any type, payload, CRC and distance), the transmit callback and, when it gave a message, its
  * success; svm_kilobot_poll at unknown ticks; svm_kilobot_hold; svm_kilobot_set_options with
  * unknown options and seed; svm_kilobot_step; a reward of any value (LEARNED). With LEARNED the
- * EEPROM is PROOF_EEPROM unknown bytes (any record a run, a power cut or bit rot left), bound by
- * svm_store_avr_eeprom (kilobot_eeprom_stub.h declares it as swarmvm_store.h does on AVR). */
+ * store is the AVR build's own (swarmvm_store.c's svm_store_avr_eeprom over avr-libc's EEPROM
+ * calls), whose reads answer any byte at any address (avr_libc/avr/eeprom.h: any record a run, a
+ * power cut or bit rot left). */
 #include "__fc_builtin.h"
 #include "swarmvm_kilobot.h"
 #include "proof_image.h"
@@ -83,37 +84,8 @@ void svm_kilobot_app_on_stream(uint8_t status, uint16_t value)
 }
 
 #if SVM_LEARNED
-#ifndef PROOF_EEPROM
-#define PROOF_EEPROM 1024u      /* the ATmega328P's EEPROM */
-#endif
-static uint8_t eeprom[PROOF_EEPROM];
-
-static uint8_t eeprom_read(void *ctx, uint16_t address)
-{
-    (void)ctx;
-    return eeprom[address];
-}
-
-static int eeprom_write(void *ctx, uint16_t address, const uint8_t *data, uint16_t length)
-{
-    uint16_t i;
-    (void)ctx;
-    for (i = 0; i < length; i++) {
-        eeprom[address + i] = data[i];
-    }
-    return 0;
-}
-
-void svm_store_avr_eeprom(svm_store_t *store, uint16_t base, uint16_t slot_size)
-{
-    store->medium.read = eeprom_read;
-    store->medium.write = eeprom_write;
-    store->medium.erase = 0;
-    store->medium.ctx = 0;
-    store->medium.block = 1;
-    store->base = base;
-    store->slot_size = slot_size;
-}
+/* The EEPROM behind avr_libc/avr/eeprom.h's contracts: any bytes at any address. */
+volatile uint8_t proof_eeprom_cells;
 #endif
 
 int main(void)
@@ -123,9 +95,6 @@ int main(void)
     uint32_t seed;
 #if SVM_LEARNED
     int32_t reward;
-#endif
-#if SVM_LEARNED
-    Frama_C_make_unknown((char *)eeprom, sizeof eeprom);
 #endif
     Frama_C_make_unknown((char *)&kilo_uid, sizeof kilo_uid);     /* int may be 16 bits */
     Frama_C_make_unknown((char *)&kilo_ticks, sizeof kilo_ticks);

@@ -7,6 +7,7 @@
  * and the policy saved. The classifier (floating point, the host's learner) is not analysed. */
 #include "__fc_builtin.h"
 #include "swarmvm.h"
+#include "harness_load.h"
 #include "swarmvm_learn.h"
 
 void Frama_C_show_each_reached(void);
@@ -41,7 +42,7 @@ int main(void)
     Frama_C_make_unknown((char *)image, PROOF_MAX_IMAGE);
     svm_init(&vm);
     svm_set_dispatch(&vm, dispatch);
-    if (svm_load(&vm, image, length) != SVM_OK) {
+    if (proof_load(&vm, image, length) != SVM_OK) {
         return 0;
     }
     Frama_C_make_unknown((char *)u16, sizeof u16);

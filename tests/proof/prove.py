@@ -47,6 +47,16 @@ REACHED = "Frama_C_show_each_reached"
 # 32 states: examples/energy_worker).
 LIMITS = ["-DSVM_MAX_EVENTS=10", "-DSVM_MAX_SUPERVISORS=4", "-DSVM_MAX_STATES=32"]
 OFF = "-DSVM_WITH_BINDINGS=0 -DSVM_WITH_FIRST=0".split()
+# The Kilobot's builds (16-bit int) are analysed as avr-gcc compiles them, `__AVR__` defined, so
+# that Eva sees their AVR branches (program-memory reads, the EEPROM medium, ATOMIC_BLOCK,
+# avr-libc's CRC step), with avr_libc/'s stand-ins of the avr-libc headers they include.
+AVR = ("-D__AVR__", "-I%s" % (HERE / "avr_libc"))
+AVR_MACHDEP = "x86_16"      # the ATmega328P's ABI (16-bit int and pointers): an AVR build
+# In every configuration: the contracts of the GCC builtins runtime_c/ calls (builtins.h).
+BUILTINS = ("-include", str(HERE / "builtins.h"))
+# What Frama-C says of a function it has neither code nor a contract for: Eva would go on with
+# an assumption made from its prototype alone, so the run fails instead (add a contract).
+UNKNOWN_FUNCTION = "Neither code nor specification for function"
 # The minimal profile (swarmvm.h, SVM_TRUSTED_IMAGE): the image is the harness's proof_image, read
 # as from flash, its masks the build's; the rest of its flags come from its model (model_build).
 TRUSTED = ("-DSVM_TRUSTED_IMAGE=proof_image", "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1")
@@ -80,12 +90,12 @@ class Config:
 
 CONFIGS = (     # the slowest first: two run at a time
     Config("stream", "harness_stream.c", ("swarmvm_stream.c", "swarmvm.c"),
-           tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), "x86_16",
+           tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), AVR_MACHDEP,
            "the stream receiver as the streaming Kilobot builds it: chunks in any order, corrupted or not,"
            " each complete image loaded and stepped"),
     Config("learn", "harness_learn.c", ("swarmvm_learn.c", "swarmvm.c"),
            tuple(LIMITS + ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_WITH_NAMES=0"] + OFF
-                 + ["-DSVM_WITH_WEIGHTED=0", "-DSVM_WITH_LEARNED=1"]), "x86_16",
+                 + ["-DSVM_WITH_WEIGHTED=0", "-DSVM_WITH_LEARNED=1"]), AVR_MACHDEP,
            "the learned policy (swarmvm_learn.c's svl_policy_*) as the Kilobot's SVM_LEARNED build compiles it:"
            " chooser, rewards, saved parameters loaded from unknown words; 16-bit int"),
     Config("logic-page", "harness_logic_page.c", ("swarmvm_logic_page.c", "swarmvm.c"),
@@ -100,14 +110,14 @@ CONFIGS = (     # the slowest first: two run at a time
            default=False),
     Config("kilobot", "harness_core.c", ("swarmvm.c",),
            tuple(LIMITS + ["-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_WITH_NAMES=0"]
-                 + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=0"]), "x86_16",
+                 + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=0"]), AVR_MACHDEP,
            "the Kilobot build (templates/kilobot/Makefile.j2): exact masks, no names, weighted on as"
            " for a model with probabilities; 16-bit int as on AVR"),
     Config("kilobot-stream", "harness_core.c", ("swarmvm.c",),
-           tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), "x86_16",
+           tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), AVR_MACHDEP,
            "the streaming Kilobot build (STREAM=1, SVM_LEARNED=1): names on, masks not exact,"
            " learned and weighted on; 16-bit int"),
-    Config("kilobot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, "x86_16",
+    Config("kilobot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, AVR_MACHDEP,
            "the Kilobot's `make MINIMAL=1` (templates/kilobot/Makefile.j2): the example's image compiled in"
            " without names, run unchecked; 16-bit int", model=EXAMPLE, profile="minimal"),
     Config("capbot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, "x86_32",
@@ -122,26 +132,25 @@ CONFIGS = (     # the slowest first: two run at a time
            " callbacks registered for any event number, any number of steps, resets and inits"),
     Config("sct-exact", "harness_sct.c", ("swarmvm_sct.c", "swarmvm.c"),
            ("-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_SCT_EXACT=1",
-            "-DSVM_SCT_RANDOM=rand_soft"), "x86_16",
+            "-DSVM_SCT_RANDOM=rand_soft"), AVR_MACHDEP,
            "the C API's exact mode as docs/robots/kilobot.md builds a published Kilobot program: the example's"
            " tables and file order, bindings on, draws from rand_soft; 16-bit int", model=EXAMPLE, profile="sct"),
-    Config("store", "harness_store.c", ("swarmvm_store.c", "swarmvm.c"), (), "x86_16",
+    Config("store", "harness_store.c", ("swarmvm_store.c", "swarmvm.c"), (), AVR_MACHDEP,
            "the two-slot store of learned parameters (swarmvm_store.c): any medium bytes, block, slot size and"
            " base, saves and loads of any length, refused writes; 16-bit int"),
     Config("kilobot-glue", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm.c"),
-           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"), "x86_16",
+           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"), AVR_MACHDEP,
            "the Kilobot glue (swarmvm_kilobot.c) of the generated program, `make`: unknown messages, ticks,"
            " uid, options and seeds around the example's image; 16-bit int", model=EXAMPLE, profile="kilobot"),
     Config("kilobot-glue-stream", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm_stream.c", "swarmvm.c"),
-           ("-I%s" % HERE, "-DSVM_STREAM=1"), "x86_16",
+           ("-I%s" % HERE, "-DSVM_STREAM=1"), AVR_MACHDEP,
            "the Kilobot glue of `make STREAM=1`: also image chunks of unknown bytes, matched, swapped in and"
            " stepped", model=EXAMPLE, profile="stream"),
     Config("kilobot-glue-learned", "harness_kilobot.c",
            ("swarmvm_kilobot.c", "swarmvm_learn.c", "swarmvm_learn_store.c", "swarmvm_store.c", "swarmvm.c"),
-           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_LEARNED=1",
-            "-include", str(HERE / "kilobot_eeprom_stub.h")), "x86_16",
+           ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_LEARNED=1"), AVR_MACHDEP,
            "the Kilobot glue of `make LEARNED=1` on the learning example: the policy, rewards of any value and"
-           " its EEPROM record (1 KB of unknown bytes)", model="examples/learning/supervisor.yaml",
+           " its EEPROM record (unknown bytes at any address)", model="examples/learning/supervisor.yaml",
            profile="learned"),
 )
 BY_NAME = {c.name: c for c in CONFIGS}
@@ -154,7 +163,8 @@ def frama_c() -> str | None:
 
 
 def command(config: Config, csv_path: Path, extra: tuple[str, ...] = ()) -> list[str]:
-    defines = " ".join(("-I%s" % RUNTIME,) + config.defines + extra)
+    avr = AVR if config.machdep == AVR_MACHDEP else ()
+    defines = " ".join(("-I%s" % RUNTIME,) + BUILTINS + avr + config.defines + extra)
     files = [str(HERE / config.harness)] + [str(RUNTIME / s) for s in config.sources]
     return [frama_c() or "frama-c", "-machdep", config.machdep, "-cpp-extra-args=" + defines, *files,
             *EVA, "-then", "-report-csv", str(csv_path)]
@@ -236,6 +246,11 @@ def analyse(config: Config, work: Path, extra: tuple[str, ...] = ()) -> Run:
     text = log.read_text(errors="replace")
     if status != 0 or not csv_path.exists():
         return Run(config, [], seconds, log, f"frama-c exited with {status} (log: {log})")
+    unknown = sorted({line.split(UNKNOWN_FUNCTION, 1)[1].split(",")[0].strip()
+                      for line in text.splitlines() if UNKNOWN_FUNCTION in line})
+    if unknown:
+        return Run(config, [], seconds, log, "no code or contract for %s: Eva would assume anything of it"
+                   " (give it a contract in tests/proof/builtins.h or a stand-in; log: %s)" % (", ".join(unknown), log))
     if REACHED not in text:
         return Run(config, [], seconds, log, f"the harness's step loop was never reached (log: {log})")
     return Run(config, parse_csv(config.name, csv_path), seconds, log)

@@ -1,7 +1,8 @@
 """`make prove`'s comparison (tests/proof/prove.py, docs/proof.md): Eva on one configuration reports
 exactly the alarms tests/proof/alarms.txt lists for it, and a planted defect (the harness built
 with PROOF_PLANT: a read one byte past the image buffer) is a new alarm that fails the run; a
-listed alarm Eva no longer reports fails it too.
+listed alarm Eva no longer reports fails it too; so does a call of a function Eva has neither code nor
+a contract for, and a Kilobot configuration is analysed with its AVR branches.
 
 Without frama-c the Eva tests skip, saying how to get it; under CI=true they fail instead."""
 
@@ -26,6 +27,18 @@ def frama_c():
 @pytest.mark.slow
 def test_one_configuration_matches_the_list(frama_c, tmp_path, capsys):
     assert prove.main(["--config", CONFIG, "--work", str(tmp_path)]) == 0, capsys.readouterr().out
+    # A Kilobot build is analysed as avr-gcc compiles it: its AVR branches, here avr-libc's CRC
+    # step (tests/proof/avr_libc/util/crc16.h) in the image check, are the ones Eva went through.
+    assert "Values at end of function _crc_ccitt_update" in (tmp_path / f"{CONFIG}.log").read_text()
+
+
+@pytest.mark.slow
+def test_a_function_without_code_or_contract_fails_the_run(frama_c, tmp_path, capsys):
+    """Eva would analyse past it on an assumption made from its prototype alone."""
+    status = prove.main(["--config", CONFIG, "--work", str(tmp_path), "-D", "PROOF_UNKNOWN_CALL=1"])
+    out = capsys.readouterr().out
+    assert status == 1, out
+    assert "no code or contract for proof_unknown" in out, out
 
 
 @pytest.mark.slow
