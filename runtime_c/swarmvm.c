@@ -1476,7 +1476,19 @@ SVM_COLD uint8_t svm_mask_nth(const uint8_t *mask, uint8_t bytes, uint8_t n)
     return 0xFFu;
 }
 
-#if FLAT_MASKS
+#if FLAT_MASKS && defined(__GNUC__) && !defined(__AVR__)
+/* The `n`-th event (from 0) of `mask`, which has more than n: its n lowest events cleared, the
+ * index of the lowest left. Where counting trailing zeros is an instruction or two (the
+ * Cortex-M4's rbit and clz) this is smaller than a walk over the bits and takes no more
+ * instructions; avr-gcc's __builtin_ctz is a library call, so AVR walks. */
+static uint8_t nth_event(mask_t mask, count_t n)
+{
+    for (; n != 0u; n--) {
+        mask = (mask_t)(mask & (mask_t)(mask - 1u));
+    }
+    return (uint8_t)__builtin_ctz(mask);
+}
+#elif FLAT_MASKS
 /* The `n`-th event (from 0) of `mask`, which has more than n. */
 static uint8_t nth_event(mask_t mask, count_t n)
 {

@@ -23,9 +23,6 @@ RUNTIME = ROOT / "runtime_c"
 SUPERVISORS = [ROOT / "tests/corpus/openswarm/capbot_demo.yaml", ROOT / "tests/corpus/openswarm/energy_worker.yaml"]
 TOOLS = ("avr-gcc", "avr-size", "avr-nm", "arm-none-eabi-gcc", "arm-none-eabi-size", "arm-none-eabi-nm", "simavr",
          "qemu-system-arm")
-# Where swarmvm's minimal profile is not below the published VM in flash (measured: 492 B
-# against 492 B, docs/figures.md): issue 35's target, point 4, is not met there.
-NOT_BELOW = {("arm", "public_example")}
 TWO_ENABLED = ROOT / "tests/corpus/nadzoru2/probabilistic_example.yaml"
 
 
@@ -114,12 +111,11 @@ def corpus_rows(tmp_path_factory):
 
 def test_flash_below_the_published_vm_on_every_corpus_supervisor(corpus_rows):
     """Issue 35's target, point 4: every corpus supervisor, both toolchains (flash only, no
-    simulator), swarmvm's generator counted; NOT_BELOW where it is not met, which must stay
-    exactly where it is (met there, it comes off the list)."""
+    simulator), swarmvm's generator counted."""
     assert len(corpus_rows) == 2 * len(_benchmark().CORPUS)
     worse = {(r.toolchain, r.supervisor): "%d >= %d" % (r.swarmvm_flash, r.published_flash)
              for r in corpus_rows if r.swarmvm_flash >= r.published_flash}
-    assert set(worse) == NOT_BELOW, worse
+    assert not worse, worse
 
 
 # ---- the profile itself (host gcc) ---------------------------------------------------------
