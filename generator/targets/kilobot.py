@@ -8,6 +8,7 @@ those characters are refused before anything is written, for this target only.""
 from ..boundary.errors import InputError
 from ..compiler.model import Model
 from ..compiler.naming import EventNames, event_names
+from ..compiler.image import pack
 from ..compiler.pipeline import Compiled
 from ..compiler.runtime_files import TEMPLATES
 from .c import file_order
@@ -63,7 +64,9 @@ def values(compiled: Compiled) -> dict[str, object]:
     of each build (the streaming one matches a received image's events by name), and each public
     event's message payload (event index -> the first KILOBOT_MESSAGE_BYTES characters of its
     message name), and what the minimal flash profile of the generated program leaves out for this
-    model (:func:`~swarmvm.targets.values.minimal_features`)."""
+    model (:func:`~swarmvm.targets.values.minimal_features`), with the image it compiles in:
+    ``trusted_image``, the image without its names section (the profile of a build that reads no
+    name runs it; c/tables.[ch].j2)."""
     probabilistic = compiled.tables.probs is not None
     events = event_names(compiled.model)
     public_inputs = has_public_inputs(compiled.tables)
@@ -71,6 +74,7 @@ def values(compiled: Compiled) -> dict[str, object]:
                 stream_sources=sources("stream"), learned_sources=sources("learn"),
                 features=features(probabilistic, names=False), stream_features=features(probabilistic, names=True),
                 public_inputs=public_inputs, minimal_features=minimal_features(public_inputs),
+                trusted_image=pack(compiled.tables, compiled.source, names=False),
                 payloads={e.index: e.message[:KILOBOT_MESSAGE_BYTES] for e in events if e.message is not None},
                 **file_order(compiled))
 

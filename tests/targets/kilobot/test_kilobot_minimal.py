@@ -1,7 +1,7 @@
 """The generated Kilobot program builds the minimal flash profile (runtime_c/swarmvm.h's
 SVM_TRUSTED_IMAGE, no violation counter, no public-first pass for a model that receives no
-message) with `make MINIMAL=1` when nothing asks for more, and still runs on the real kilolib in
-simavr as the full VM does; `make` builds the full VM, and so do a program of one's own and STREAM=1."""
+message, the image without its names section) with `make MINIMAL=1` when nothing asks for more,
+and still runs on the real kilolib in simavr as the full VM does; `make` builds the full VM, and so do a program of one's own and STREAM=1."""
 
 import shutil
 import subprocess
@@ -29,15 +29,26 @@ def _text(elf: Path) -> int:
     return int(sizes.splitlines()[1].split()[0])
 
 
+def _image_bytes(elf: Path) -> int:
+    """The size of the compiled-in image, robot_image (avr-nm -S)."""
+    symbols = subprocess.run(["avr-nm", "-S", str(elf)], check=True, capture_output=True, text=True).stdout
+    return next(int(f[1], 16) for f in map(str.split, symbols.splitlines()) if f[-1] == "robot_image")
+
+
 def test_the_generated_program_runs_on_the_minimal_profile_as_on_the_full_vm(tmp_path):
     board_or_skip()
     folder = tmp_path / "robot"
-    write_outputs(folder, generate(compile_inputs([str(EXAMPLE)], name="robot"), "kilobot"))
+    compiled = compile_inputs([str(EXAMPLE)], name="robot")
+    write_outputs(folder, generate(compiled, "kilobot"))
     minimal = shutil.copy(_make(folder, "MINIMAL=1"), tmp_path / "minimal.elf")
     assert PROFILE in (folder / "robot.flags").read_text()
     full = shutil.copy(_make(folder), tmp_path / "full.elf")
     assert "TRUSTED" not in (folder / "robot.flags").read_text()
     assert _text(minimal) < _text(full)
+    # the profile reads no name: its image is the one without names, the full VM's has them
+    nameless = compile_inputs([str(EXAMPLE)], name="robot", names=False).image
+    assert (_image_bytes(minimal), _image_bytes(full)) == (len(nameless), len(compiled.image))
+    assert len(nameless) < len(compiled.image)
     runs = [board.run(elf, ticks=40, read="last_step") for elf in (minimal, full)]
     for run in runs:        # started by RUN, the VM steps at every tick to the end, no image refused (red)
         assert run.end[:1] == (40,) and run.ram >= 39
