@@ -138,6 +138,10 @@ CONFIGS = (     # the slowest first: two run at a time
     Config("store", "harness_store.c", ("swarmvm_store.c", "swarmvm.c"), (), AVR_MACHDEP,
            "the two-slot store of learned parameters (swarmvm_store.c): any medium bytes, block, slot size and"
            " base, saves and loads of any length, refused writes; 16-bit int"),
+    Config("store-zephyr", "harness_store_zephyr.c", ("swarmvm_store_zephyr.c", "swarmvm_store.c", "swarmvm.c"),
+           ("-I%s" % (ROOT / "firmware" / "capbot"),), "x86_32",
+           "the CapBot's store on a Zephyr flash partition (swarmvm_store_zephyr.c): Zephyr's flash map calls"
+           " answering as documented over any partition, write block and page size; 32-bit int"),
     Config("kilobot-glue", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm.c"),
            ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"), AVR_MACHDEP,
            "the Kilobot glue (swarmvm_kilobot.c) of the generated program, `make`: unknown messages, ticks,"
