@@ -74,3 +74,14 @@ def test_a_line_without_a_classification_is_refused(tmp_path):
 def test_every_listed_configuration_exists():
     counts, _ = prove.read_list(prove.ALARMS)
     assert {a[0] for a in counts} <= set(prove.BY_NAME)
+
+
+@pytest.mark.slow
+def test_the_zephyr_flash_store_is_proved(frama_c, tmp_path):
+    """store-zephyr reports no alarm (docs/proof.md: the first configuration with 0), its
+    harness's step loop analysed: the store's code (body_byte's CRC bytes by a test, no longer
+    a shift by an amount Eva could not bound) and the CapBot's binding to Zephyr's flash map."""
+    run = prove.analyse(prove.BY_NAME["store-zephyr"], tmp_path)
+    assert not run.error, run.error
+    assert run.alarms == []
+    assert "Values at end of function area_write" in run.log.read_text()
