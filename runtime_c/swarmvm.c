@@ -1870,29 +1870,39 @@ uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event)
 }
 
 #if SVM_WITH_NAMES
-SVM_COLD int svm_event_index(const svm_vm_t *vm, const char *name)
+SVM_COLD int svm_event_index_n(const svm_vm_t *vm, const char *name, uint8_t length)
 {
     uint16_t pos = vm->names_at;
-    uint8_t e, i;
+    uint8_t e, i, len;
     if (vm->image == 0 || pos == 0 || name == 0) {
+        return -1;
+    }
+    for (e = 0; e < LOADED_EVENTS(vm); e++, pos = (uint16_t)(pos + 1u + len)) {
+        len = RD(vm, pos);
+        if (len == length) {
+            for (i = 0; i < len && (uint8_t)name[i] == RD(vm, pos + 1u + i); i++) {
+            }
+            if (i == len) {
+                return e;
+            }
+        }
+    }
+    return -1;
+}
+
+SVM_COLD int svm_event_index(const svm_vm_t *vm, const char *name)
+{
+    uint16_t n;
+    if (name == 0) {
         return -1;
     }
     if (name[0] == 'E' && name[1] == 'V' && name[2] == '_') {
         name += 3;
     }
-    for (e = 0; e < LOADED_EVENTS(vm); e++) {
-        uint8_t len = RD(vm, pos);
-        for (i = 0; i < len && name[i] != '\0'; i++) {
-            if ((uint8_t)name[i] != RD(vm, pos + 1u + i)) {
-                break;
-            }
-        }
-        if (i == len && name[i] == '\0') {
-            return e;
-        }
-        pos = (uint16_t)(pos + 1u + len);
+    /* a name has at most 255 bytes: a longer string names no event */
+    for (n = 0; n < 256u && name[n] != '\0'; n++) {
     }
-    return -1;
+    return n < 256u ? svm_event_index_n(vm, name, (uint8_t)n) : -1;
 }
 
 uint8_t svm_has_names(const svm_vm_t *vm)

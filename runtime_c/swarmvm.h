@@ -399,6 +399,9 @@ uint8_t svm_is_public(const svm_vm_t *vm, uint8_t event);
 
 /* Index of the event named `name` ("x" or "EV_x"), or -1 (unknown, or image without names). */
 int svm_event_index(const svm_vm_t *vm, const char *name);
+/* Index of the event whose name is exactly the `length` characters at `name` ("x", no "EV_"
+ * taken off; no NUL needed), or -1: e.g. a name svm_event_name copied, with its length. */
+int svm_event_index_n(const svm_vm_t *vm, const char *name, uint8_t length);
 
 /* Byte `at` of the loaded image, wherever it lives (flash, RAM, EEPROM): for code that reads
  * the image format itself (docs/image-format.md), e.g. a learner. */

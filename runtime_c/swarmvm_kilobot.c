@@ -191,17 +191,18 @@ static uint8_t dispatch(svm_vm_t *machine, uint8_t event, uint8_t op)
  * it runs): every event must exist here, with the same kind. */
 static int match_events(const svm_vm_t *image)
 {
-    char event_name[SVM_KILOBOT_NAME_BYTES];
-    uint8_t e;
+    char event_name[SVM_KILOBOT_NAME_BYTES] = {0};
+    uint8_t e, length;
     if (!svm_has_names(image)) {
         return SVM_ERR_NAMES;
     }
     for (e = 0; e < svm_num_events(image); e++) {
         int own;
-        if (svm_event_name(image, e, event_name, sizeof event_name) >= sizeof event_name - 1u) {
+        length = svm_event_name(image, e, event_name, sizeof event_name);
+        if (length >= sizeof event_name - 1u) {
             return SVM_ERR_NAMES;   /* longer than any name of this program */
         }
-        own = svm_event_index(&vm, event_name);
+        own = svm_event_index_n(&vm, event_name, length);
         if (own < 0 || svm_is_controllable(&vm, (uint8_t)own) != svm_is_controllable(image, e)) {
             return SVM_ERR_NAMES;
         }

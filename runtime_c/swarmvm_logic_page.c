@@ -39,7 +39,7 @@ int svm_logic_page_validate(void)
 int svm_logic_page_load(svm_vm_t *vm, const uint8_t *compiled, uint16_t compiled_length, uint8_t *to_compiled)
 {
     svm_vm_t names;     /* the compiled-in image, only to look its event names up */
-    char name[NAME_CAPACITY];
+    char name[NAME_CAPACITY] = {0};
     uint8_t e;
     int result = svm_load_P(vm, svm_logic_page(), svm_logic_page_length());
     svm_init(&names);
@@ -47,8 +47,8 @@ int svm_logic_page_load(svm_vm_t *vm, const uint8_t *compiled, uint16_t compiled
     for (e = 0; e < svm_num_events(vm); e++) {
         int own = e < svm_num_events(&names) ? (int)e : -1;
         if (svm_has_names(vm)) {
-            (void)svm_event_name(vm, e, name, sizeof name);
-            own = svm_event_index(&names, name);
+            uint8_t length = svm_event_name(vm, e, name, sizeof name);
+            own = svm_event_index_n(&names, name, length < sizeof name ? length : (uint8_t)(sizeof name - 1u));
         }
         to_compiled[e] = (uint8_t)SVM_LOGIC_NO_EVENT;
         if (own >= 0) {

@@ -254,9 +254,11 @@ def test_the_nth_event_of_a_byte_mask(tmp_path):
 
 
 def test_names_looked_up_and_read_back(tmp_path):
-    """svm_event_index, svm_has_names and svm_event_name at their edges: a name's prefix is no
-    name, an image without names has none, the event one past the last has no name, and a buffer
-    of one byte gets the empty string even for an event out of range."""
+    """svm_event_index, svm_event_index_n, svm_has_names and svm_event_name at their edges: a
+    name's prefix is no name, an image without names has none, the event one past the last has no
+    name, a buffer of one byte gets the empty string even for an event out of range; a name given
+    with its length needs no NUL (the byte after it is not read as part of it), and its "EV_" is
+    not taken off."""
     path = next(p for p in SUPERVISORS if p.endswith("/energy_worker.yaml"))
     image, bare = batch(path).image, compile_inputs([path], names=False).image
     names = F.Image.parse(image).names
@@ -272,6 +274,8 @@ def test_names_looked_up_and_read_back(tmp_path):
     printf("%%d\\n", svm_load(&vm, image, sizeof image));
     printf("%%u\\n", svm_has_names(&vm));
     printf("%%d %%d %%d\\n", svm_event_index(&vm, "EV_%s"), svm_event_index(&vm, "%s"), svm_event_index(&vm, "%s"));
+    printf("%%d %%d %%d\\n", svm_event_index_n(&vm, "%sx", %d), svm_event_index_n(&vm, "%s", %d),
+           svm_event_index_n(&vm, "EV_%s", %d));
     buf[0] = 'x';
     len = svm_event_name(&vm, %d, buf, 1);
     printf("%%u %%u\\n", len, (unsigned)buf[0]);
@@ -280,9 +284,11 @@ def test_names_looked_up_and_read_back(tmp_path):
     printf("%%u %%u\\n", len, (unsigned)buf[0]);
     len = svm_event_name(&vm, %d, buf, sizeof buf);
     printf("%%u %%s\\n", len, buf);""" % (
-        names[0], names[0][:-1], names[0] + "x", events, events - 1)])
+        names[0], names[0][:-1], names[0] + "x",
+        names[1], len(names[1]), names[1], len(names[1]) - 1, names[1], len(names[1]) + 3, events, events - 1)])
     last = names[-1]
-    assert run_c(tmp_path, body) == ["0", "0", "0", "0", "1", "0", "-1", "-1", "0", "0", str(len(names[0])), "0",
+    assert run_c(tmp_path, body) == ["0", "0", "0", "0", "1", "0", "-1", "-1", "1", "-1", "-1", "0", "0",
+                                     str(len(names[0])), "0",
                                      str(len(last)), last[:7]]
 
 

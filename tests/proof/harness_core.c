@@ -23,6 +23,9 @@ int proof_unknown(void);
 #endif
 
 static uint8_t image[PROOF_MAX_IMAGE];
+#if SVM_WITH_NAMES
+static char query[260];     /* a C string of any 0 .. 259 characters, for the name look-ups */
+#endif
 static svm_vm_t vm;
 #if SVM_WITH_BINDINGS
 static svm_binding_t table[SVM_MAX_EVENTS];
@@ -108,6 +111,14 @@ int main(void)
     svm_reset(&vm);
     while (Frama_C_nondet(0, 1)) {
         Frama_C_show_each_reached();            /* prove.py: the loop was analysed */
+#if SVM_WITH_NAMES
+        if (Frama_C_nondet(0, 1)) {             /* a look-up of any name, with or without its NUL */
+            Frama_C_make_unknown(query, sizeof query - 1u);
+            query[sizeof query - 1u] = '\0';
+            (void)svm_event_index(&vm, query);
+            (void)svm_event_index_n(&vm, query, (uint8_t)Frama_C_interval(0, 255));
+        }
+#endif
         (void)svm_step(&vm);
     }
     return 0;
