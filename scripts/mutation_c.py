@@ -63,6 +63,32 @@ def compiles(path: Path, builds: list[tuple[str, ...]]) -> bool:
                               capture_output=True).returncode == 0 for defines in builds)
 
 
+def running_in_group(pgid: int) -> list[int]:
+    """The processes of process group ``pgid`` that have not died (a zombie awaiting its reaping
+    has), from /proc/<pid>/stat: its state, then its group, after the command name's ')'."""
+    alive = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):
+            continue        # gone while being read
+        if int(fields[2]) == pgid and fields[0] not in ("Z", "X"):
+            alive.append(int(stat.parent.name))
+    return alive
+
+
+def kill_group(pgid: int, limit: float = 10.0) -> None:
+    """SIGKILL to every process of the group, and back only once none runs: the signal is
+    delivered asynchronously, so a program the tests started may still be running just after
+    killpg returns. RuntimeError if some still run after ``limit`` seconds."""
+    os.killpg(pgid, signal.SIGKILL)
+    deadline = time.monotonic() + limit
+    while running_in_group(pgid):
+        if time.monotonic() > deadline:
+            raise RuntimeError("mutation_c: processes %s of a killed judge still run" % running_in_group(pgid))
+        time.sleep(0.01)
+
+
 def judge(command: str, tree: Path, env: dict[str, str], timeout: float) -> str:
     """killed, timeout or survived: what the judge's tests make of the copy as it is now. The
     tests run in a session of their own, killed whole at the timeout: a mutant that makes a
@@ -72,7 +98,7 @@ def judge(command: str, tree: Path, env: dict[str, str], timeout: float) -> str:
         try:
             code = tests.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
-            os.killpg(tests.pid, signal.SIGKILL)
+            kill_group(tests.pid)
             tests.wait()
             return "timeout"
     return "survived" if code == 0 else "killed"

@@ -3,6 +3,7 @@ an interrupted run resumes from its results, mutants that were not judged stay o
 and the report puts the C runtime's row beside the Python modules' (mutation_report.py --also)."""
 
 import json
+import subprocess
 import sys
 from pathlib import Path
 
@@ -70,9 +71,23 @@ def test_a_judge_that_hangs_is_killed_with_the_programs_it_started(tmp_path):
     """A mutant that makes a harness loop: at the timeout the tests and every program they
     started are killed, none left running orphaned (a zombie awaiting its reaping is dead)."""
     pid_file = tmp_path / "pid"
-    command = "sh -c 'sleep 60 & echo $! > %s; wait'" % pid_file
+    command = "sh -c 'for i in 1 2 3 4; do sleep 60 & echo $! >> %s; done; wait'" % pid_file
     assert mutation_c.judge(command, tmp_path, {"PATH": "/usr/bin:/bin"}, timeout=1.0) == "timeout"
-    status = Path("/proc/%s/status" % pid_file.read_text().strip())
-    assert not status.exists() or "State:\tZ" in status.read_text()
+    pids = pid_file.read_text().split()
+    assert len(pids) == 4
+    for pid in pids:        # dead when judge returns, not some time after (SIGKILL is asynchronous)
+        status = Path("/proc/%s/status" % pid)
+        assert not status.exists() or "State:\tZ" in status.read_text()
     assert mutation_c.judge("true", tmp_path, {"PATH": "/usr/bin:/bin"}, timeout=5.0) == "survived"
     assert mutation_c.judge("false", tmp_path, {"PATH": "/usr/bin:/bin"}, timeout=5.0) == "killed"
+
+
+def test_a_process_group_is_seen_running_until_it_is_killed():
+    sleeper = subprocess.Popen(["sleep", "60"], start_new_session=True)
+    try:
+        assert mutation_c.running_in_group(sleeper.pid) == [sleeper.pid]
+        mutation_c.kill_group(sleeper.pid)
+        assert mutation_c.running_in_group(sleeper.pid) == []     # a zombie until reaped: dead
+    finally:
+        sleeper.kill()
+        sleeper.wait()
