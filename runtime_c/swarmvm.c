@@ -81,11 +81,14 @@ typedef uint8_t count_t;
 #define READ(image, source, at) ((void)(source), (image)[at])
 #endif
 
+/*@ requires \valid_read(image + at);
+    assigns \nothing; */
 static SVM_COLD uint8_t rd_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint8_t)READ(image, source, at);
 }
 
+//@ assigns \nothing;
 static SVM_COLD uint16_t rd16_raw(const uint8_t *image, uint8_t source, uint16_t at)
 {
     return (uint16_t)(rd_raw(image, source, at) | ((uint16_t)rd_raw(image, source, (uint16_t)(at + 1u)) << 8));
@@ -204,6 +207,7 @@ static const uint8_t ones_in[256] SVM_PROGMEM = {
     3, 4, 4, 5, 4, 5, 5, 6, 4, 5, 5, 6, 5, 6, 6, 7, 4, 5, 5, 6, 5, 6, 6, 7, 5, 6, 6, 7, 6, 7, 7, 8
 };
 
+//@ assigns \nothing;
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
     return SVM_FLASH_BYTE(ones_in + x);
@@ -211,6 +215,7 @@ static SVM_INLINE uint8_t popcount8(uint8_t x)
 #elif defined(SVM_TRUSTED_IMAGE) && ((defined(__arm__) && !defined(__linux__)) || defined(__AVR__))
 /* The minimal profile on AVR and bare-metal ARM: one bit cleared per set bit (the fewest bytes;
  * the masks it counts, below an event or of a state, have few bits). */
+//@ assigns \nothing;
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
     uint8_t count = 0;
@@ -220,6 +225,7 @@ static SVM_INLINE uint8_t popcount8(uint8_t x)
     return count;
 }
 #else
+//@ assigns \nothing;
 static SVM_INLINE uint8_t popcount8(uint8_t x)
 {
     x = (uint8_t)(x - (uint8_t)((x >> 1) & 0x55u));
@@ -542,6 +548,7 @@ static SVM_MASK_INLINE uint8_t cursor_next(cursor_t *c)
 
 /* One byte of the sum: the image check's tail and svm_crc16_update (the learned-parameter
  * store's records) share it. */
+//@ assigns \nothing;
 static SVM_INLINE unsigned crc_byte(unsigned crc, uint8_t byte)
 {
 #if defined(__AVR__)
@@ -563,17 +570,20 @@ uint16_t svm_crc16_update(uint16_t crc, uint8_t byte)
 /* The image checks, from here to svm_validate, are left out of a trusted build: its one image
  * was checked by the compiler that wrote it (swarmvm.h, "Minimal profile"). */
 #ifndef SVM_TRUSTED_IMAGE
+//@ assigns \nothing;
 static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t length)
 {
     /* A native int (16 bits on AVR) for the sum: no truncation per byte. */
     unsigned crc = SVM_CRC16_INIT;
     uint16_t i = 0;
 #if SVM_CRC_TABLE
+    //@ loop assigns i, crc;
     for (; (uint32_t)i + 4u <= length; i += 4u) {     /* uint32_t: no wrap where int has 16 bits */
         crc ^= (unsigned)PEEK(source, image + i) | (unsigned)PEEK(source, image + i + 1) << 8;
         crc = crc_table4[crc & 0xFFu] ^ crc_table3[crc >> 8] ^ crc_table2[PEEK(source, image + i + 2)] ^
               crc_table[PEEK(source, image + i + 3)];
     }
+    //@ loop assigns i, crc;
     for (; (uint32_t)i + 2u <= length; i += 2u) {
         crc ^= (unsigned)PEEK(source, image + i) | (unsigned)PEEK(source, image + i + 1) << 8;
         crc = crc_table2[crc & 0xFFu] ^ crc_table[crc >> 8];
@@ -581,7 +591,8 @@ static SVM_COLD uint16_t crc16(const uint8_t *image, uint8_t source, uint16_t le
 #endif
     /* Eva: unrolled (an analysis directive, no code), so that the check of a compiled-in image,
      * a constant, is computed exactly (make prove's harnesses: docs/proof.md). */
-    //@ loop unroll 1024;
+    /*@ loop unroll 1024;
+        loop assigns i, crc; */
     for (; i < length; i++) {
         crc = crc_byte(crc, PEEK(source, image + i));
     }
@@ -599,8 +610,13 @@ typedef struct layout {
 #ifndef SVM_TRUSTED_IMAGE
 /* `count` bytes of an image from `at` into `out` (RAM): the checks below read a record once
  * into locals instead of calling the reader per field. */
+/*@ requires \valid(out + (0 .. count - 1)) && \valid_read(image + (at .. at + count - 1)) && at + count <= 65535;
+    assigns out[0 .. count - 1]; */
 static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source, uint16_t at, uint8_t count)
 {
+    /*@ loop invariant out == \at(out, Pre) + (\at(count, Pre) - count) && at == \at(at, Pre) + (\at(count, Pre) - count);
+        loop invariant 0 <= count <= \at(count, Pre);
+        loop assigns count, at, out, \at(out, Pre)[0 .. \at(count, Pre) - 1]; */
     for (; count != 0u; count--, at++) {
         *out++ = rd_raw(image, source, at);
     }
@@ -609,13 +625,16 @@ static SVM_COLD void rd_copy(uint8_t *out, const uint8_t *image, uint8_t source,
 
 #ifndef SVM_TRUSTED_IMAGE
 /* The little-endian u16 at `p` in RAM (the header's fields, read by validation only). */
+/*@ requires \valid_read(p + (0 .. 1));
+    assigns \nothing; */
 static SVM_INLINE uint16_t le16(const uint8_t *p)
 {
-    return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
+    return (uint16_t)(p[0] | ((unsigned)p[1] << 8));
 }
 
 /* Whether byte `last` of an event mask (its last byte) has a bit at or above event `e` (in the
  * padding): an event the image does not have. */
+//@ assigns \nothing;
 static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)
 {
     uint8_t used = (uint8_t)(e & 7u);
@@ -623,9 +642,11 @@ static SVM_INLINE uint8_t beyond_events(uint8_t last, uint8_t e)
 }
 
 /* Whether the event mask of `m` bytes at `at` has a bit beyond the image's `e` events. */
+/*@ requires 1 <= m && at + m - 1 <= 65535 && \valid_read(image + at + m - 1);
+    assigns \nothing; */
 static SVM_COLD uint8_t mask_beyond(const uint8_t *image, uint8_t source, uint16_t at, uint8_t m, uint8_t e)
 {
-    return beyond_events(rd_raw(image, source, (uint16_t)(at + m - 1u)), e);
+    return beyond_events(rd_raw(image, source, (uint16_t)(at + (uint8_t)(m - 1u))), e);
 }
 
 /* Every index the step follows must stay inside the image, every event mask inside the image's
@@ -634,20 +655,43 @@ static SVM_COLD uint8_t mask_beyond(const uint8_t *image, uint8_t source, uint16
  * events, and each state's successors follow the previous state's, the last ending at T (no
  * target is read by two states or by none). Supervisor and state records are walked in order
  * (the states of supervisor s follow those of s - 1), so no record offset is multiplied out. */
-static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay)
+/*@ lemma one_record_fits: \forall integer r, m; 1 <= r && 0 <= m ==> m + 2 <= r * (m + 2);
+    lemma one_supervisor_fits: \forall integer r, m; 1 <= r && 0 <= m ==> m + 6 <= r * (m + 6); */
+
+/*@ requires validated: \valid_read(lay);
+    requires validated: 1 <= lay->header[SVM_AT_NUM_EVENTS] && lay->header[SVM_AT_MASK_BYTES] == (lay->header[SVM_AT_NUM_EVENTS] + 7) / 8;
+    requires validated: 1 <= lay->header[SVM_AT_STATE_WIDTH] <= 2;
+    requires validated: lay->states_at == SUPS_AT(lay->header[SVM_AT_MASK_BYTES])
+                               + lay->header[SVM_AT_NUM_SUPERVISORS] * SUP_SIZE(lay->header[SVM_AT_MASK_BYTES]);
+    requires validated: lay->targets_at == lay->states_at + total_states * STATE_SIZE(lay->header[SVM_AT_MASK_BYTES]);
+    requires validated: \valid_read(image + (0 .. lay->targets_at - 1 + (lay->header[SVM_AT_STATE_WIDTH] == 1 ? 1 : 2) * total_trans));
+    assigns \nothing;
+    ensures \result == SVM_OK || \result == SVM_ERR_LAYOUT; */
+static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const layout_t *lay, uint16_t total_states,
+                                    uint16_t total_trans)
 {
     const uint8_t *h = lay->header;
     uint8_t m = h[SVM_AT_MASK_BYTES], width = h[SVM_AT_STATE_WIDTH], n = h[SVM_AT_NUM_SUPERVISORS];
     uint8_t e = h[SVM_AT_NUM_EVENTS], s, record[6];
     int accepted;
-    uint16_t total_states = le16(h + SVM_AT_NUM_STATES), total_trans = le16(h + SVM_AT_NUM_TRANSITIONS);
     uint16_t expected_first = 0, expected_succ = 0, alphabet = (uint16_t)SUPS_AT(m);
     const uint8_t *st = image + lay->states_at, *targets = image + lay->targets_at;
     if (mask_beyond(image, source, CONTROLLABLE_AT, m, e) || mask_beyond(image, source, (uint16_t)PUBLIC_AT(m), m, e)) {
         return SVM_ERR_LAYOUT;
     }
+    /* `rest`, a ghost (proof-only) count of the state records not walked yet, at least the states
+     * left: the provers bound a record's offset by one product, rest * STATE_SIZE(m). */
+    //@ ghost int rest = total_states;
+    /*@ loop invariant sups: 0 <= s <= n && alphabet == SUPS_AT(m) + s * SUP_SIZE(m);
+        loop invariant sups_rest: lay->states_at - alphabet == (n - s) * SUP_SIZE(m);
+        loop invariant walked: expected_first <= total_states && expected_succ <= total_trans;
+        loop invariant rest_bound: rest >= total_states - expected_first;
+        loop invariant st_in: \base_addr(st) == \base_addr(image) && lay->states_at <= st - image;
+        loop invariant st_rest: lay->targets_at - (st - image) == rest * STATE_SIZE(m);
+        loop assigns s, alphabet, expected_first, expected_succ, st, rest, record[0 .. 5]; */
     for (s = 0; s < n; s++, alphabet = (uint16_t)(alphabet + SUP_SIZE(m))) {
         uint16_t first, count, q;
+        //@ assert one_more_supervisor: alphabet + SUP_SIZE(m) <= lay->states_at;
         rd_copy(record, image, source, (uint16_t)(alphabet + m), 6u);    /* first, count, initial */
         first = le16(record);
         count = le16(record + 2);
@@ -655,16 +699,25 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
             mask_beyond(image, source, alphabet, m, e)) {
             return SVM_ERR_LAYOUT;
         }
+        //@ assert first + count <= total_states;
+        /*@ loop invariant q: 0 <= q <= count && expected_succ <= total_trans;
+            loop invariant rest_bound: rest >= total_states - first - q;
+            loop invariant st_in: \base_addr(st) == \base_addr(image) && lay->states_at <= st - image;
+            loop invariant st_rest: lay->targets_at - (st - image) == rest * STATE_SIZE(m);
+            loop assigns q, st, expected_succ, rest; */
         for (q = 0; q < count; q++, st += STATE_SIZE(m)) {
             uint16_t defined = 0, succ, k;
             const uint8_t *target;
             uint8_t i, byte = 0, foreign = 0;
+            //@ assert one_more: rest >= 1;
+            /*@ loop invariant 0 <= i <= m;
+                loop assigns i, byte, foreign, defined; */
             for (i = 0; i < m; i++) {
                 byte = PEEK(source, st + i);
                 foreign |= (uint8_t)(byte & (uint8_t)~PEEK(source, image + alphabet + i));
                 defined = (uint16_t)(defined + popcount8(byte));
             }
-            succ = (uint16_t)(PEEK(source, st + m) | (unsigned)PEEK(source, st + m + 1) << 8);
+            succ = (uint16_t)(PEEK(source, st + m) + 256u * PEEK(source, st + m + 1));     /* a sum: WP bounds it */
             if (foreign != 0u || beyond_events(byte, e) || succ != expected_succ || defined > total_trans - succ) {
                 return SVM_ERR_LAYOUT;
             }
@@ -673,6 +726,9 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
             if (width != 1u) {
                 target += succ;     /* two bytes a target (the width is 1 or 2: validate) */
             }
+            /*@ loop invariant 0 <= k <= defined;
+                loop invariant target: \base_addr(target) == \base_addr(image) && target - targets == (width == 1 ? 1 : 2) * (succ + k);
+                loop assigns k, target; */
             for (k = 0; k < defined; k++, target += width) {
                 unsigned local = PEEK(source, target);
                 if (width != 1u) {
@@ -682,6 +738,7 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
                     return SVM_ERR_LAYOUT;
                 }
             }
+            //@ ghost rest = rest - 1;
         }
         expected_first = (uint16_t)(first + count);
     }
@@ -694,6 +751,7 @@ static SVM_INLINE int check_indices(const uint8_t *image, uint8_t source, const 
 }
 
 /* Whether `c` may be part of an event name: letters, digits and '_' (the input languages' rule). */
+//@ assigns \nothing;
 static uint8_t name_char(uint8_t c)
 {
     return (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
@@ -707,15 +765,18 @@ static uint8_t name_char(uint8_t c)
  * never reads them, and its VM core's flash budget cannot spare the check (docs/image-format.md
  * gives its size). The walk goes by position (`at < pos`), so each length byte it reads is
  * evidently inside the names already checked. */
+//@ assigns \nothing;
 static SVM_COLD uint8_t name_repeats(const uint8_t *image, uint8_t source, uint16_t at, uint16_t pos)
 {
     const uint8_t *name = image + pos;
     uint8_t n = PEEK(source, name);
+    //@ loop assigns at;
     while (at < pos) {
         const uint8_t *first = image + at;
         uint8_t k = PEEK(source, first);
         at = (uint16_t)(at + 1u + k);
         if (k == n) {
+            //@ loop assigns k;
             while (k != 0u && PEEK(source, first + k) == PEEK(source, name + k)) {
                 k--;
             }
@@ -733,16 +794,89 @@ static SVM_COLD uint8_t name_repeats(const uint8_t *image, uint8_t source, uint1
 
 /* `pos` + `count` * `size`, or PAST_END when that passes `end` (<= 65533): section offsets stay
  * 16-bit and a corrupt header never makes them wrap around (PAST_END stays PAST_END). */
+/*@ assigns \nothing;
+    ensures \result == (count * size + pos > end ? PAST_END : count * size + pos); */
 static SVM_COLD uint16_t section_end(uint16_t pos, uint16_t count, uint8_t size, uint16_t end)
 {
     uint32_t to = (uint32_t)count * size + pos;
     return to > end ? PAST_END : (uint16_t)to;
 }
 
+/* Past the sections that follow the transitions' (and their probabilities) in an image: the names
+ * (each of letters, digits and '_', none given twice), the order (a permutation of the events,
+ * then the states' order) and the source, those the header's flags say it has; PAST_END when one
+ * does not fit before `end` or does not read as its section. A function of its own so that
+ * validate's contract (WP, docs/proof.md) needs of it only that it ends at or after `pos`. */
+/*@ assigns lay->names_at;
+    ensures \result >= pos; */
+static uint16_t trailer_end(const uint8_t *image, uint8_t source, layout_t *lay, uint16_t pos, uint16_t end)
+{
+    const uint8_t *h = lay->header;
+    uint8_t flags = h[SVM_AT_FLAGS], e = h[SVM_AT_NUM_EVENTS], i;
+    uint16_t states = le16(h + SVM_AT_NUM_STATES);
+    if (flags & SVM_FLAG_NAMES) {
+        lay->names_at = pos;
+        /*@ loop invariant \at(pos, Pre) <= pos;
+            loop assigns i, pos; */
+        for (i = 0; i < e; i++) {
+            uint16_t name_end;
+            if (pos >= end || (name_end = section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end)) ==
+                                  PAST_END) {
+                return PAST_END;
+            }
+#if SVM_WITH_NAMES
+            if (name_repeats(image, source, lay->names_at, pos)) {
+                return PAST_END;
+            }
+#endif
+            /*@ loop invariant \at(pos, Pre) <= pos <= name_end <= end;
+                loop assigns pos; */
+            for (pos++; pos < name_end; pos++) {
+                if (!name_char(rd_raw(image, source, pos))) {
+                    return PAST_END;
+                }
+            }
+        }
+    }
+    if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
+        uint16_t order = pos, order_end = section_end(pos, e, 1u, end), k;
+        if (order_end == PAST_END || section_end(order_end, states, 2u, end) == PAST_END) {
+            return PAST_END;
+        }
+        /*@ loop invariant \at(pos, Pre) <= pos <= order_end;
+            loop assigns pos, k; */
+        for (; pos < order_end; pos++) {      /* each event index below e, once: a permutation */
+            uint8_t listed = rd_raw(image, source, pos);
+            if (listed >= e) {
+                return PAST_END;
+            }
+            //@ loop assigns k;
+            for (k = order; k < pos; k++) {
+                if (PEEK(source, image + k) == listed) {
+                    return PAST_END;
+                }
+            }
+        }
+        pos = section_end(pos, states, 2u, end);
+    }
+    if (flags & SVM_FLAG_SOURCE) {    /* the compatibility layers' only: skipped, bounds checked */
+        pos = section_end(pos, (uint16_t)(32u + 2u * h[SVM_AT_NUM_SUPERVISORS]), 1u, end);
+        /*@ loop invariant \at(pos, Pre) <= pos;
+            loop assigns i, pos; */
+        for (i = 0; i < e && pos != PAST_END; i++) {
+            pos = pos >= end ? PAST_END : section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end);
+        }
+    }
+    return pos;
+}
+
+/*@ requires image == \null || \valid_read(image + (0 .. length - 1));
+    requires \valid(lay);
+    assigns *lay; */
 static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t length, layout_t *lay)
 {
     /* The header is copied into lay->header here, before anything reads it. */
-    uint8_t *h = lay->header, flags, e, m, i;  // cppcheck-suppress ctuuninitvar
+    uint8_t *h = lay->header, flags, e, m;  // cppcheck-suppress ctuuninitvar
     uint16_t states, trans, end, pos;
     if (image == 0 || length < SVM_MIN_IMAGE_SIZE) {
         return SVM_ERR_LENGTH;
@@ -767,7 +901,7 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
     trans = le16(h + SVM_AT_NUM_TRANSITIONS);
     m = h[SVM_AT_MASK_BYTES];
     /* (The order section comes only with the names: the compiler writes it with them.) */
-    if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || (uint8_t)(h[SVM_AT_STATE_WIDTH] - 1u) > 1u ||
+    if (e == 0 || h[SVM_AT_NUM_SUPERVISORS] == 0 || h[SVM_AT_STATE_WIDTH] == 0 || h[SVM_AT_STATE_WIDTH] > 2u ||
         m != (uint8_t)((e + 7u) / 8u) || (flags & (uint8_t)~SVM_KNOWN_FLAGS) != 0u ||
         (flags & (SVM_FLAG_ORDER | SVM_FLAG_NAMES)) == SVM_FLAG_ORDER ||
         (flags & (SVM_FLAG_SOURCE | SVM_FLAG_ORDER)) == SVM_FLAG_SOURCE) {
@@ -790,51 +924,7 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
     if (pos > end) {
         return SVM_ERR_LAYOUT;
     }
-    if (flags & SVM_FLAG_NAMES) {
-        lay->names_at = pos;
-        for (i = 0; i < e; i++) {
-            uint16_t name_end;
-            if (pos >= end || (name_end = section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end)) ==
-                                  PAST_END) {
-                return SVM_ERR_LAYOUT;
-            }
-#if SVM_WITH_NAMES
-            if (name_repeats(image, source, lay->names_at, pos)) {
-                return SVM_ERR_LAYOUT;
-            }
-#endif
-            for (pos++; pos < name_end; pos++) {
-                if (!name_char(rd_raw(image, source, pos))) {
-                    return SVM_ERR_LAYOUT;
-                }
-            }
-        }
-    }
-    if (flags & SVM_FLAG_ORDER) {     /* read by the compatibility layers only: bounds checked */
-        uint16_t order = pos, order_end = section_end(pos, e, 1u, end), k;
-        if (order_end == PAST_END || section_end(order_end, states, 2u, end) == PAST_END) {
-            return SVM_ERR_LAYOUT;
-        }
-        for (; pos < order_end; pos++) {      /* each event index below e, once: a permutation */
-            uint8_t index = rd_raw(image, source, pos);
-            if (index >= e) {
-                return SVM_ERR_LAYOUT;
-            }
-            for (k = order; k < pos; k++) {
-                if (PEEK(source, image + k) == index) {
-                    return SVM_ERR_LAYOUT;
-                }
-            }
-        }
-        pos = section_end(pos, states, 2u, end);
-    }
-    if (flags & SVM_FLAG_SOURCE) {    /* the compatibility layers' only: skipped, bounds checked */
-        pos = section_end(pos, (uint16_t)(32u + 2u * h[SVM_AT_NUM_SUPERVISORS]), 1u, end);
-        for (i = 0; i < e && pos != PAST_END; i++) {
-            pos = pos >= end ? PAST_END : section_end((uint16_t)(pos + 1u), rd_raw(image, source, pos), 1u, end);
-        }
-    }
-    if (pos != end) {
+    if (trailer_end(image, source, lay, pos, end) != end) {
         return SVM_ERR_LAYOUT;
     }
     /* (Tested on the header's bytes, which install copies: Eva then bounds the VM's counts. Each
@@ -854,7 +944,7 @@ static SVM_COLD int validate(const uint8_t *image, uint8_t source, uint16_t leng
         return SVM_ERR_LIMITS;
     }
 #endif
-    return check_indices(image, source, lay);
+    return check_indices(image, source, lay, states, trans);
 }
 
 /* Whether this build reads images from `source` (SVM_IMAGE_SOURCES). */

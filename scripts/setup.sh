@@ -3,7 +3,8 @@
 # emulators and build tools from Debian's packages (with what building ARGoS from source needs:
 # xz-utils, Lua 5.3, FreeImage; scripts/argos.sh builds it; and clang's libFuzzer and sanitizer
 # runtimes, libclang-rt-14-dev, for the C fuzzer: tests/fuzz; Chromium and its driver for the
-# inspector page's browser tests: tests/inspector; Frama-C with Eva, frama-c-base, for `make prove`:
+# inspector page's browser tests: tests/inspector; Frama-C with Eva and WP, frama-c-base, and the
+# provers WP calls through Why3, why3 cvc4 z3, for `make prove`:
 # proof/), then a virtual environment of the
 # project's own (.venv/, or $VENV) holding swarmvm (editable) and its test dependencies.
 # Debian's system Python refuses `pip install` (PEP 668), hence the venv; every make target
@@ -16,7 +17,7 @@ python="${SETUP_PYTHON:-python3}"
 packages="gcc-avr avr-libc binutils-avr simavr gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm libsimavr-dev make
   g++ clang cmake pkg-config cppcheck python3-venv graphviz
   xz-utils liblua5.3-dev libfreeimage-dev libfreeimageplus-dev libyaml-cpp-dev
-  libclang-rt-14-dev chromium chromium-driver frama-c-base"
+  libclang-rt-14-dev chromium chromium-driver frama-c-base why3 cvc4 z3"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -22,7 +22,7 @@ int proof_unknown(void);
 #define PROOF_MAX_IMAGE 512
 #endif
 
-static uint8_t image[PROOF_MAX_IMAGE];
+static uint8_t unknown_image[PROOF_MAX_IMAGE];
 #if SVM_WITH_NAMES
 static char query[260];     /* a C string of any 0 .. 259 characters, for the name look-ups */
 #endif
@@ -74,7 +74,7 @@ int main(void)
 {
     uint16_t length = (uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE);
     uint32_t seed;
-    Frama_C_make_unknown((char *)image, PROOF_MAX_IMAGE);
+    Frama_C_make_unknown((char *)unknown_image, PROOF_MAX_IMAGE);
     svm_init(&vm);
     svm_set_dispatch(&vm, dispatch);
     svm_set_on_violation(&vm, violation);
@@ -89,11 +89,11 @@ int main(void)
 #endif
 #if PROOF_PLANT
     /* tests/proof: a planted defect the comparison must catch (a read past the image). */
-    if (image[(uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE)] == 0u) {
+    if (unknown_image[(uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE)] == 0u) {
         return 1;
     }
 #endif
-    if (proof_load(&vm, image, length) != SVM_OK) {
+    if (proof_load(&vm, unknown_image, length) != SVM_OK) {
         return 0;
     }
 #if SVM_WITH_BINDINGS

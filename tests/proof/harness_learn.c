@@ -20,7 +20,7 @@ void Frama_C_show_each_reached(void);
 #endif
 #define PROOF_WORDS (SVL_POLICY_HEADER_WORDS + PROOF_THETA + 1u)
 
-static uint8_t image[PROOF_MAX_IMAGE];
+static uint8_t unknown_image[PROOF_MAX_IMAGE];
 static svm_vm_t vm;
 static svl_policy_t policy;
 static int32_t theta[PROOF_THETA];
@@ -39,10 +39,10 @@ int main(void)
     int32_t reward;
     uint16_t u16[2];
     uint8_t shift;
-    Frama_C_make_unknown((char *)image, PROOF_MAX_IMAGE);
+    Frama_C_make_unknown((char *)unknown_image, PROOF_MAX_IMAGE);
     svm_init(&vm);
     svm_set_dispatch(&vm, dispatch);
-    if (proof_load(&vm, image, length) != SVM_OK) {
+    if (proof_load(&vm, unknown_image, length) != SVM_OK) {
         return 0;
     }
     Frama_C_make_unknown((char *)u16, sizeof u16);

@@ -36,12 +36,12 @@ uint8_t rand_soft(void)
     return (uint8_t)Frama_C_interval(0, 255);
 }
 #else
-static uint8_t image[PROOF_MAX_IMAGE];
-static uint16_t length;
+static uint8_t unknown_image[PROOF_MAX_IMAGE];
+static uint16_t unknown_length;
 
 int svm_sct_load(svm_vm_t *vm)
 {
-    return svm_load_P(vm, image, length);
+    return svm_load_P(vm, unknown_image, unknown_length);
 }
 #endif
 
@@ -64,8 +64,8 @@ static unsigned char check(void *data)
 int main(void)
 {
 #if !SVM_SCT_EXACT
-    length = (uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE);
-    Frama_C_make_unknown((char *)image, PROOF_MAX_IMAGE);
+    unknown_length = (uint16_t)Frama_C_interval(0, PROOF_MAX_IMAGE);
+    Frama_C_make_unknown((char *)unknown_image, PROOF_MAX_IMAGE);
 #endif
     (void)SCT_init();
     while (Frama_C_nondet(0, 1)) {

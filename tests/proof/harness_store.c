@@ -25,7 +25,7 @@ void Frama_C_show_each_reached(void);
 
 static uint8_t medium[PROOF_MEDIUM];
 static svm_store_t store;
-static uint8_t data[PROOF_PAYLOAD];
+static uint8_t saved[PROOF_PAYLOAD];
 
 static uint8_t read(void *ctx, uint16_t address)
 {
@@ -72,9 +72,9 @@ int main(void)
     store.slot_size = slot_size;
     while (Frama_C_nondet(0, 1)) {
         Frama_C_show_each_reached();            /* prove.py: the loop was analysed */
-        Frama_C_make_unknown((char *)data, sizeof data);
-        (void)svm_store_save(&store, data, (uint16_t)Frama_C_interval(0, PROOF_PAYLOAD));
-        (void)svm_store_load(&store, data, (uint16_t)Frama_C_interval(0, PROOF_PAYLOAD),
+        Frama_C_make_unknown((char *)saved, sizeof saved);
+        (void)svm_store_save(&store, saved, (uint16_t)Frama_C_interval(0, PROOF_PAYLOAD));
+        (void)svm_store_load(&store, saved, (uint16_t)Frama_C_interval(0, PROOF_PAYLOAD),
                              Frama_C_nondet(0, 1) ? &sequence : 0);
         if (Frama_C_nondet(0, 1)) {
             Frama_C_make_unknown((char *)medium, sizeof medium);

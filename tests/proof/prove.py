@@ -9,7 +9,13 @@ list must not go stale: delete the line, or run with --update to rewrite the lis
 classifications of the lines that stay). Line numbers are not part of an alarm, so that an edit
 elsewhere in the file does not change the list.
 
-A run also fails when Frama-C fails, or when a harness's step loop was never reached (an analysis
+WP proves what Eva cannot of the image checks (wp_units.py): check_indices' walk, which Eva takes
+by its contract where the images are unknown, and the contracts of svm_validate and its helpers,
+with CVC4 and Z3 through Why3, on `swarmvm.c` alone, once for every configuration whose build of
+those functions is the same code. A property is proved when Eva or WP proves it; what neither
+proves is an alarm.
+
+A run also fails when Frama-C fails, when Why3 does not find both provers, or when a harness's step loop was never reached (an analysis
 that found every path dead would report no alarm and prove nothing).
 
     python tests/proof/prove.py [--config NAME ...] [--alarms FILE] [--update] [--work DIR]
@@ -22,9 +28,11 @@ import collections
 import concurrent.futures
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -32,6 +40,11 @@ from pathlib import Path
 from swarmvm.compiler.pipeline import compile_inputs
 from swarmvm.targets.c import file_order
 from swarmvm.targets.values import features, has_public_inputs, minimal_features
+
+if __package__:
+    from .wp_units import CHECKS, UNIT_FUNCTIONS, UNITS, Unit, lemmas, present, unit_key, within
+else:   # run as a script: its folder is on the path
+    from wp_units import CHECKS, UNIT_FUNCTIONS, UNITS, Unit, lemmas, present, unit_key, within
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
@@ -41,6 +54,15 @@ ALARMS = HERE / "alarms.txt"
 # states of a function split by its return value, so that `if (load(...) != SVM_OK)` keeps what
 # an accepted image's layout is, no progress lines.
 EVA = ["-eva", "-eva-precision", "1", "-eva-split-return", "auto", "-eva-no-show-progress"]
+# The report lists every property, also those no analysis tried (status Ignored): an annotation of
+# runtime_c/ that nothing proved is an alarm, not a silence.
+REPORT = ["-report-untried", "-report-csv"]
+# WP's provers, each within 10 s a goal (none takes a second here; Qed, WP's simplifier, proves
+# most goals itself), one goal at a time: two configurations run at once.
+WP = ["-wp-prover", "cvc4,z3", "-wp-timeout", "10", "-wp-par", "1", "-wp-cache", "none"]
+PROVERS = ("CVC4", "Z3")
+# The libc's, the builtins' and the harnesses' own specifications: assumed, not alarms.
+SPEC_KINDS = ("assigns clause", "from clause", "postcondition", "termination clause")
 # What the harnesses print when their step loop is reached (Frama_C_show_each_<name>).
 REACHED = "Frama_C_show_each_reached"
 # The example's limits, as `gen` writes them into every target's build (10 events, 4 supervisors,
@@ -86,6 +108,10 @@ class Config:
     # the targets' builds of it sets its limits and features (PROFILES).
     model: str = ""
     profile: str = ""
+    # Whether the harness loads images of unknown bytes: Eva then takes check_indices by its
+    # contract (its walk's relations between header fields are beyond intervals, and analysing it
+    # multiplied Eva's states), and WP proves its body free of run-time errors (CHECKS).
+    unknown_images: bool = True
 
 
 CONFIGS = (     # the slowest first: two run at a time
@@ -119,10 +145,10 @@ CONFIGS = (     # the slowest first: two run at a time
            " learned and weighted on; 16-bit int"),
     Config("kilobot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, AVR_MACHDEP,
            "the Kilobot's `make MINIMAL=1` (templates/kilobot/Makefile.j2): the example's image compiled in"
-           " without names, run unchecked; 16-bit int", model=EXAMPLE, profile="minimal"),
+           " without names, run unchecked; 16-bit int", model=EXAMPLE, profile="minimal", unknown_images=False),
     Config("capbot-minimal", "harness_trusted.c", ("swarmvm.c",), TRUSTED, "x86_32",
            "the CapBot's minimal profile (templates/capbot/qemu.mk.j2): the example's image compiled in,"
-           " run unchecked; 32-bit int", model=EXAMPLE, profile="minimal"),
+           " run unchecked; 32-bit int", model=EXAMPLE, profile="minimal", unknown_images=False),
     Config("capbot", "harness_core.c", ("swarmvm.c",),
            tuple(LIMITS + OFF + ["-DSVM_WITH_WEIGHTED=1", "-DSVM_WITH_LEARNED=1"]), "x86_32",
            "the CapBot build (templates/capbot/CMakeLists.txt.j2, SVM_LEARNED=ON): names on, learned and"
@@ -134,18 +160,18 @@ CONFIGS = (     # the slowest first: two run at a time
            ("-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_SCT_EXACT=1",
             "-DSVM_SCT_RANDOM=rand_soft"), AVR_MACHDEP,
            "the C API's exact mode as docs/robots/kilobot.md builds a published Kilobot program: the example's"
-           " tables and file order, bindings on, draws from rand_soft; 16-bit int", model=EXAMPLE, profile="sct"),
+           " tables and file order, bindings on, draws from rand_soft; 16-bit int", model=EXAMPLE, profile="sct", unknown_images=False),
     Config("store", "harness_store.c", ("swarmvm_store.c", "swarmvm.c"), (), AVR_MACHDEP,
            "the two-slot store of learned parameters (swarmvm_store.c): any medium bytes, block, slot size and"
-           " base, saves and loads of any length, refused writes; 16-bit int"),
+           " base, saves and loads of any length, refused writes; 16-bit int", unknown_images=False),
     Config("store-zephyr", "harness_store_zephyr.c", ("swarmvm_store_zephyr.c", "swarmvm_store.c", "swarmvm.c"),
            ("-I%s" % (ROOT / "firmware" / "capbot"),), "x86_32",
            "the CapBot's store on a Zephyr flash partition (swarmvm_store_zephyr.c): Zephyr's flash map calls"
-           " answering as documented over any partition, write block and page size; 32-bit int"),
+           " answering as documented over any partition, write block and page size; 32-bit int", unknown_images=False),
     Config("kilobot-glue", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm.c"),
            ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1"), AVR_MACHDEP,
            "the Kilobot glue (swarmvm_kilobot.c) of the generated program, `make`: unknown messages, ticks,"
-           " uid, options and seeds around the example's image; 16-bit int", model=EXAMPLE, profile="kilobot"),
+           " uid, options and seeds around the example's image; 16-bit int", model=EXAMPLE, profile="kilobot", unknown_images=False),
     Config("kilobot-glue-stream", "harness_kilobot.c", ("swarmvm_kilobot.c", "swarmvm_stream.c", "swarmvm.c"),
            ("-I%s" % HERE, "-DSVM_STREAM=1"), AVR_MACHDEP,
            "the Kilobot glue of `make STREAM=1`: also image chunks of unknown bytes, matched, swapped in and"
@@ -155,23 +181,61 @@ CONFIGS = (     # the slowest first: two run at a time
            ("-I%s" % HERE, "-DSVM_IMAGE_SOURCES=SVM_FLASH_ONLY", "-DSVM_MASK_EXACT=1", "-DSVM_LEARNED=1"), AVR_MACHDEP,
            "the Kilobot glue of `make LEARNED=1` on the learning example: the policy, rewards of any value and"
            " its EEPROM record (unknown bytes at any address)", model="examples/learning/supervisor.yaml",
-           profile="learned"),
+           profile="learned", unknown_images=False),
 )
 BY_NAME = {c.name: c for c in CONFIGS}
 
 Alarm = tuple[str, str, str, str, str, str]     # configuration, file, function, kind, status, property
+Row = dict[str, str]                            # a row of a -report-csv file
+PROVED = ("Valid", "Considered valid")          # proved, or assumed (the libc's own specifications)
 
 
 def frama_c() -> str | None:
     return shutil.which(os.environ.get("FRAMA_C", "frama-c"))
 
 
-def command(config: Config, csv_path: Path, extra: tuple[str, ...] = ()) -> list[str]:
+def frontend(config: Config, extra: tuple[str, ...]) -> list[str]:
+    """Frama-C on `config`'s files, preprocessed with its flags and ABI."""
     avr = AVR if config.machdep == AVR_MACHDEP else ()
     defines = " ".join(("-I%s" % RUNTIME,) + BUILTINS + avr + config.defines + extra)
     files = [str(HERE / config.harness)] + [str(RUNTIME / s) for s in config.sources]
-    return [frama_c() or "frama-c", "-machdep", config.machdep, "-cpp-extra-args=" + defines, *files,
-            *EVA, "-then", "-report-csv", str(csv_path)]
+    return [frama_c() or "frama-c", "-machdep", config.machdep, "-cpp-extra-args=" + defines, *files]
+
+
+def command(config: Config, csv_path: Path, extra: tuple[str, ...] = ()) -> list[str]:
+    """Eva on `config`, its report into `csv_path`."""
+    spec = ["-eva-use-spec", CHECKS.functions[0]] if config.unknown_images else []
+    return [*frontend(config, extra), *EVA, *spec, "-then", *REPORT, str(csv_path)]
+
+
+def wp_command(config: Config, unit: Unit, printed: str, csv_path: Path, out: Path,
+               extra: tuple[str, ...]) -> list[str]:
+    """WP on `unit` in `config`'s program (whose printing is `printed`: the harness's program, so
+    that its report names what Eva's does as Eva's does), the report into `csv_path`."""
+    every, assigns = present(unit, printed)
+    line = [*frontend(config, extra), "-wp", *WP, "-wp-out", str(out)]
+    # Every stage sets what it proves: an option set in one stage holds in the stages after it
+    # ("-@lemma": every property of the functions; the lemmas have a stage of their own).
+    selection = "-wp-prop=" + (unit.props or "-@lemma")
+    stages = [["-wp-rte" if unit.rte else "-wp-no-rte", "-wp-fct", ",".join(every), selection]] if every else []
+    stages += [["-wp-no-rte", "-wp-fct", ",".join(assigns), "-wp-prop=@assigns"]] if assigns else []
+    stages += [["-wp-no-rte", "-wp-fct=", "-wp-prop=@lemma"]] if unit.lemmas else []
+    for n, stage in enumerate(stages):
+        line += (["-then"] if n else []) + stage
+    return line + ["-then", *REPORT, str(csv_path)]
+
+
+def why3_config(work: Path) -> tuple[dict[str, str], str]:
+    """The environment that points WP's Why3 at a configuration of this run's own, in which Why3
+    found the provers (`why3 config detect`), and what is missing, if anything."""
+    if shutil.which("why3") is None:
+        return {}, "why3 not found (scripts/setup.sh installs why3 cvc4 z3)"
+    work.mkdir(parents=True, exist_ok=True)
+    env = dict(os.environ, WHY3CONFIG=str(work / "why3.conf"))
+    subprocess.run(["why3", "config", "detect"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    text = (work / "why3.conf").read_text() if (work / "why3.conf").exists() else ""
+    missing = [p for p in PROVERS if 'name = "%s"' % p not in text]
+    return env, ("why3 found no %s (scripts/setup.sh installs why3 cvc4 z3)" % " or ".join(missing)) if missing else ""
 
 
 @dataclass
@@ -183,20 +247,80 @@ class Run:
     error: str = ""
 
 
-def parse_csv(config: str, path: Path) -> list[Alarm]:
-    """The properties of the report that Eva did not prove: every alarm, and any precondition of a
-    library function it could not establish."""
-    alarms = []
+def reached_functions(config: Config, log: str) -> set[str]:
+    """The functions Eva analysed (its final states of each, in the log), and those it took by
+    their contracts, CHECKS, when it analysed their caller, validate."""
+    reached = set(re.findall(r"Values at end of function (\w+)", log))
+    return reached | set(CHECKS.functions) if config.unknown_images and "validate" in reached else reached
+
+
+def read_report(path: Path) -> list[Row]:
+    """The rows of a -report-csv file: tab-separated, unquoted, with a header line; a property of
+    several lines (the libc's `complete behaviors`) goes on over the lines that follow its row."""
+    rows: list[list[str]] = []
     with path.open(newline="") as f:
-        for row in csv.DictReader(f, delimiter="\t"):
-            status = row["status"]
-            if status.startswith(("Valid", "Considered valid", "Dead")):
-                continue    # proved, assumed (the libc's own specifications), or unreachable
-            if row["property kind"] in ("assigns clause", "from clause", "postcondition", "termination clause"):
-                continue    # the libc's and builtins' own specifications, not alarms
-            alarms.append((config, row["file"], row["function"], row["property kind"], status,
-                           " ".join(row["property"].split())))
-    return alarms
+        for fields in csv.reader(f, delimiter="\t", quoting=csv.QUOTE_NONE):
+            if rows and len(fields) < len(rows[0]):
+                rows[-1][-1] += " " + "\t".join(fields)
+            else:
+                rows.append(fields)
+    return [dict(zip(rows[0], fields)) for fields in rows[1:]] if rows else []
+
+
+def row_keys(rows: list[Row]) -> list[tuple[str, ...]]:
+    """Each row's identity in either report: its place and property, and which occurrence of them
+    it is (a line may call a function twice with the same precondition)."""
+    seen: collections.Counter[tuple[str, ...]] = collections.Counter()
+    keys = []
+    for row in rows:
+        key = tuple(row[k] for k in ("directory", "file", "line", "function", "property kind")) + (
+            " ".join(row["property"].split()),)
+        seen[key] += 1
+        keys.append(key + (str(seen[key]),))
+    return keys
+
+
+def unproved(config: Config, eva: list[Row], wp: list[Row], reached: set[str]) -> list[Alarm]:
+    """The properties neither Eva nor WP proved: every alarm, every annotation of runtime_c/
+    (contracts, loop invariants, assertions) not proved or never tried in the functions the
+    configuration runs (`reached`), and any precondition of a library function they could not
+    establish. Where Eva took check_indices by its contract, it reports its body, and what only
+    that body calls, as dead: those rows are WP's to prove. WP proves a property "partially" when
+    its proof rests on properties of the other run (a precondition at a call Eva analysed): those
+    are rows of their own, proved or listed."""
+    def eva_proves(row: Row) -> bool:
+        if row["status"].startswith("Dead"):
+            return not (config.unknown_images and row["function"] in CHECKS.functions)
+        return row["status"].startswith(PROVED)
+    by_eva = dict(zip(row_keys(eva), eva))
+    by_wp = dict(zip(row_keys(wp), wp))
+    keys = list(by_eva) + [k for k in by_wp if k not in by_eva]
+
+    def alarm(key: tuple[str, ...]) -> Alarm | None:
+        row, theirs = by_eva.get(key), by_wp.get(key)
+        if (row is not None and eva_proves(row)) or (
+                theirs is not None and theirs["status"].startswith(PROVED + ("Partially proven",))):
+            return None
+        if theirs is not None and (row is None or row["status"].startswith("Dead")):
+            row = theirs
+        assert row is not None
+        status = row["status"]
+        if Path(row["directory"]).name != RUNTIME.name and (row["property kind"] in SPEC_KINDS or status == "Ignored"):
+            return None     # the libc's, builtins' and harnesses' own specifications, or ones never used
+        if (status == "Ignored" or status.startswith("Dead")) and row["function"] not in reached:
+            return None     # an annotation of a function this configuration never runs
+        return (config.name, row["file"], row["function"], row["property kind"], status,
+                " ".join(row["property"].split()))
+    # A precondition of a unit's function (each is static and called only directly) is its calls'
+    # rows ("precondition of f"), each proved by either run or an alarm of its own: its own row,
+    # which has only one run's view of them, adds nothing.
+    calls: dict[tuple[str, str], list[tuple[str, ...]]] = collections.defaultdict(list)
+    for key in keys:
+        if key[4].startswith("precondition of "):
+            calls[(key[4].removeprefix("precondition of "), key[5])].append(key)
+    found = {key: alarm(key) for key in keys}
+    return [a for key, a in found.items() if a is not None and not (
+        key[4] == "precondition" and key[3] in UNIT_FUNCTIONS and calls.get((key[3], key[5])))]
 
 
 def model_build(config: Config, work: Path) -> tuple[str, ...]:
@@ -236,9 +360,11 @@ def model_build(config: Config, work: Path) -> tuple[str, ...]:
             *(theta if config.profile == "learned" else []), *("-DSVM_WITH_%s=%d" % kv for kv in chosen.items()))
 
 
-def analyse(config: Config, work: Path, extra: tuple[str, ...] = ()) -> Run:
-    """Eva on one configuration (`extra`: more -D flags, e.g. the planted defect of the tests)."""
+def analyse(config: Config, work: Path, extra: tuple[str, ...] = (), env: dict[str, str] | None = None) -> Run:
+    """Eva, then WP on the image checks, on one configuration (`extra`: more -D flags, e.g. the
+    planted defect of the tests; `env`: why3_config's, made here if not given)."""
     work.mkdir(parents=True, exist_ok=True)
+    env = env if env is not None else why3_config(work)[0]
     if config.model:
         extra = model_build(config, work) + extra
     csv_path, log = work / f"{config.name}.csv", work / f"{config.name}.log"
@@ -246,18 +372,81 @@ def analyse(config: Config, work: Path, extra: tuple[str, ...] = ()) -> Run:
     with log.open("w") as out:
         status = subprocess.run(command(config, csv_path, extra), stdout=out, stderr=subprocess.STDOUT,
                                 cwd=ROOT).returncode
-    seconds = time.monotonic() - start
     text = log.read_text(errors="replace")
     if status != 0 or not csv_path.exists():
-        return Run(config, [], seconds, log, f"frama-c exited with {status} (log: {log})")
+        return Run(config, [], time.monotonic() - start, log, f"frama-c exited with {status} (log: {log})")
     unknown = sorted({line.split(UNKNOWN_FUNCTION, 1)[1].split(",")[0].strip()
                       for line in text.splitlines() if UNKNOWN_FUNCTION in line})
     if unknown:
-        return Run(config, [], seconds, log, "no code or contract for %s: Eva would assume anything of it"
-                   " (give it a contract in tests/proof/builtins.h or a stand-in; log: %s)" % (", ".join(unknown), log))
+        return Run(config, [], time.monotonic() - start, log, "no code or contract for %s: Eva would assume"
+                   " anything of it (give it a contract in tests/proof/builtins.h or a stand-in; log: %s)"
+                   % (", ".join(unknown), log))
     if REACHED not in text:
-        return Run(config, [], seconds, log, f"the harness's step loop was never reached (log: {log})")
-    return Run(config, parse_csv(config.name, csv_path), seconds, log)
+        return Run(config, [], time.monotonic() - start, log, f"the harness's step loop was never reached (log: {log})")
+    reached = reached_functions(config, text)
+    wp_rows: list[Row] = []
+    printed = work / f"{config.name}.printed.c"
+    units = [u for u in (within(u, reached) for u in UNITS) if u.functions or u.assigns_only]
+    if units:
+        with (work / f"{config.name}.print.log").open("w") as out:
+            status = subprocess.run([*frontend(config, extra), "-print", "-ocode", str(printed)],
+                                    stdout=out, stderr=subprocess.STDOUT, cwd=ROOT).returncode
+        if status != 0 or not printed.exists():
+            return Run(config, [], time.monotonic() - start, log, f"frama-c -print exited with {status} (log: {out.name})")
+    for unit in units:
+        rows = prove_unit(config, unit, printed.read_text(), work, extra, env)
+        if isinstance(rows, str):
+            return Run(config, [], time.monotonic() - start, log, rows)
+        wp_rows += rows
+    return Run(config, unproved(config, read_report(csv_path), wp_rows, reached), time.monotonic() - start, log)
+
+
+# The WP runs of this process, by work folder and unit_key: configurations whose build of a unit
+# is the same code share one run (the first to need it makes it, the others wait for it).
+_WP_RUNS: dict[tuple[Path, str], concurrent.futures.Future[list[Row] | str]] = {}
+_WP_LOCK = threading.Lock()
+
+
+def prove_unit(config: Config, unit: Unit, printed: str, work: Path, extra: tuple[str, ...],
+               env: dict[str, str]) -> list[Row] | str:
+    """WP's report of `unit` in `config`'s program (`printed`: Frama-C's printing of it), made by
+    this call or by the one that first needed the same (unit_key), or why WP failed."""
+    key = unit_key(unit, config.machdep, printed)
+    with _WP_LOCK:
+        run = _WP_RUNS.get((work, key))
+        mine = run is None
+        if run is None:
+            run = _WP_RUNS[(work, key)] = concurrent.futures.Future()
+    if not mine:
+        return run.result()
+    stem = work / f"wp-{unit.name}-{key}"
+    result: list[Row] | str = f"WP on {unit.name} did not finish (log: {stem}.log)"
+    try:        # whatever happens, the configurations waiting for this run get an answer
+        result = run_wp(config, unit, printed, stem, extra, env)
+    finally:
+        run.set_result(result)
+    return result
+
+
+def run_wp(config: Config, unit: Unit, printed: str, stem: Path, extra: tuple[str, ...],
+           env: dict[str, str]) -> list[Row] | str:
+    """WP on `unit` in `config`'s program, its log, report and goals beside `stem`: the report's
+    rows of the unit's functions (WP tries no other) and a row for each lemma, from the goals
+    WP proved (the report has none for a lemma); or why WP failed."""
+    csv_path, log = stem.with_suffix(".csv"), stem.with_suffix(".log")
+    every, assigns = present(unit, printed)
+    with log.open("w") as out:
+        out.write("# %s, WP on %s (as built for %s)\n" % (unit.name, ", ".join(every + assigns), config.name))
+        out.flush()
+        status = subprocess.run(wp_command(config, unit, printed, csv_path, stem, extra), stdout=out,
+                                stderr=subprocess.STDOUT, cwd=ROOT, env=env).returncode
+    if status != 0 or not csv_path.exists():
+        return f"frama-c's WP exited with {status} (log: {log})"
+    proved = set(re.findall(r"Goal typed_lemma_(\w+) : Valid", log.read_text(errors="replace")))
+    return [r for r in read_report(csv_path) if r["function"] in every + assigns] + [
+        {"directory": RUNTIME.name, "file": "swarmvm.c", "line": "", "function": "", "property kind": "lemma",
+         "status": "Valid" if name in proved else "Unknown", "property": name}
+        for name in (lemmas(printed) if unit.lemmas else [])]
 
 
 def read_list(path: Path) -> tuple[collections.Counter[Alarm], dict[Alarm, str]]:
@@ -313,11 +502,15 @@ def main(argv: list[str] | None = None) -> int:
     if frama_c() is None:
         print("prove: frama-c not found (scripts/setup.sh installs frama-c-base)", file=sys.stderr)
         return 2
+    env, missing = why3_config(args.work)
+    if missing:
+        print("prove: " + missing, file=sys.stderr)
+        return 2
     configs = [BY_NAME[n] for n in args.config] if args.config else [c for c in CONFIGS if c.default]
     extra = tuple("-D" + d for d in args.defines)
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        runs = list(pool.map(lambda c: analyse(c, args.work, extra), configs))
+        runs = list(pool.map(lambda c: analyse(c, args.work, extra, env), configs))
     failed = [r for r in runs if r.error]
     found: collections.Counter[Alarm] = collections.Counter(a for r in runs for a in r.alarms)
     for r in runs:

@@ -2,12 +2,14 @@
 exactly the alarms tests/proof/alarms.txt lists for it, and a planted defect (the harness built
 with PROOF_PLANT: a read one byte past the image buffer) is a new alarm that fails the run; a
 listed alarm Eva no longer reports fails it too; so does a call of a function Eva has neither code nor
-a contract for, and a Kilobot configuration is analysed with its AVR branches.
+a contract for, and a Kilobot configuration is analysed with its AVR branches. WP's part: a check
+taken out of check_indices leaves one of its reads unproved.
 
 Without frama-c the Eva tests skip, saying how to get it; under CI=true they fail instead."""
 
 import collections
 import os
+import shutil
 
 import pytest
 
@@ -85,3 +87,66 @@ def test_the_zephyr_flash_store_is_proved(frama_c, tmp_path):
     assert not run.error, run.error
     assert run.alarms == []
     assert "Values at end of function area_write" in run.log.read_text()
+
+
+@pytest.mark.slow
+def test_wp_fails_on_a_check_that_lets_a_read_past_the_transitions(frama_c, tmp_path, monkeypatch):
+    """WP proves check_indices' reads in bounds (docs/proof.md, "WP") from the test that each
+    state's targets end within the header's transitions: without it, the read of a target is an
+    unproved property of check_indices, where the unchanged runtime has none."""
+    runtime = tmp_path / "runtime_c"
+    shutil.copytree(prove.RUNTIME, runtime)
+    source = (runtime / "swarmvm.c").read_text()
+    bound = " || defined > total_trans - succ) {"
+    assert source.count(bound) == 1
+    (runtime / "swarmvm.c").write_text(source.replace(bound, ") {"))
+    monkeypatch.setattr(prove, "RUNTIME", runtime)
+    run = prove.analyse(prove.BY_NAME["host"], tmp_path / "work")
+    assert not run.error, run.error
+    unproved = [a for a in run.alarms if a[2] == "check_indices"]
+    assert any(a[3] == "mem_access" and "target" in a[5] for a in unproved), run.alarms
+
+
+def row(function: str, kind: str, status: str, prop: str, line: str = "10") -> dict[str, str]:
+    return {"directory": "runtime_c", "file": "swarmvm.c", "line": line, "function": function,
+            "property kind": kind, "status": status, "property": prop}
+
+
+def test_a_property_is_an_alarm_only_when_neither_eva_nor_wp_proves_it():
+    """unproved() joins Eva's and WP's reports row by row (docs/proof.md, "WP")."""
+    host = prove.BY_NAME["host"]
+    reached = {"validate", "fire", *prove.CHECKS.functions}
+    eva = [row("fire", "mem_access", "Unknown", "a"),                 # Eva's alarm, not WP's
+           row("check_indices", "mem_access", "Dead", "b"),           # taken by its contract: WP's
+           row("check_indices", "mem_access", "Dead", "c"),
+           row("validate", "assigns clause", "Ignored", "d"),         # Eva does not prove assigns
+           row("validate", "assigns clause", "Ignored", "e"),
+           row("fire", "user assertion", "Partially proven", "f"),    # Eva's partial: an alarm
+           row("trailer_end", "assigns clause", "Ignored", "g")]      # never run here
+    wp = [row("check_indices", "mem_access", "Unknown", "b"),
+          row("check_indices", "mem_access", "Partially proven", "c"),   # on Eva's rows: proved
+          row("validate", "assigns clause", "Valid", "d"),
+          row("check_indices", "mem_access", "Unknown", "h", line="12")]  # only WP has it
+    found = {(a[2], a[4], a[5]) for a in prove.unproved(host, eva, wp, reached)}
+    assert found == {("fire", "Unknown", "a"), ("check_indices", "Unknown", "b"), ("validate", "Ignored", "e"),
+                     ("fire", "Partially proven", "f"), ("check_indices", "Unknown", "h")}
+    # Where the images are compiled in, Eva analyses check_indices itself: its dead code is dead.
+    glue = prove.BY_NAME["kilobot-glue"]
+    assert ("check_indices", "Unknown", "b") not in {(a[2], a[4], a[5]) for a in prove.unproved(glue, eva, wp, reached)}
+
+
+def test_a_precondition_of_a_unit_function_is_proved_or_listed_at_each_call():
+    host = prove.BY_NAME["host"]
+    reached = {"validate", "fire", *prove.CHECKS.functions}
+    requires = "validated: 1 ≤ w ≤ 2"
+    eva = [row("check_indices", "precondition", "Unknown", requires, line="5"),
+           row("validate", "precondition of check_indices", "Unknown", requires, line="40")]
+    wp = [row("validate", "precondition of check_indices", "Valid", requires, line="40")]
+    assert prove.unproved(host, eva, wp, reached) == []
+    unproved_call = eva + [row("fire", "precondition of check_indices", "Unknown", requires, line="90")]
+    assert {(a[2], a[3]) for a in prove.unproved(host, unproved_call, wp, reached)} == {
+        ("fire", "precondition of check_indices")}
+    # A function outside the units keeps its own precondition's row as its runs left it.
+    other = [row("svm_step", "precondition", "Unknown", "p", line="5"),
+             row("fire", "precondition of svm_step", "Valid", "p", line="40")]
+    assert [a[2] for a in prove.unproved(host, other, [], reached | {"svm_step"})] == ["svm_step"]

@@ -4,6 +4,7 @@
 #ifndef PROOF_UTIL_CRC16_H
 #define PROOF_UTIL_CRC16_H
 #include <stdint.h>
+//@ assigns \nothing;
 static inline uint16_t _crc_ccitt_update(uint16_t crc, uint8_t data)
 {
     data = (uint8_t)(data ^ (uint8_t)crc);
