@@ -15,8 +15,9 @@ with CVC4 and Z3 through Why3, on `swarmvm.c` alone, once for every configuratio
 those functions is the same code. A property is proved when Eva or WP proves it; what neither
 proves is an alarm.
 
-A run also fails when Frama-C fails, when Why3 does not find both provers, or when a harness's step loop was never reached (an analysis
-that found every path dead would report no alarm and prove nothing).
+A run also fails when Frama-C fails, when Why3 does not find both provers, or when a harness's
+step loop was never reached (an analysis that found every path dead would report no alarm and
+prove nothing).
 
     python tests/proof/prove.py [--config NAME ...] [--alarms FILE] [--update] [--work DIR]
 """
@@ -235,7 +236,8 @@ def why3_config(work: Path) -> tuple[dict[str, str], str]:
     subprocess.run(["why3", "config", "detect"], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     text = (work / "why3.conf").read_text() if (work / "why3.conf").exists() else ""
     missing = [p for p in PROVERS if 'name = "%s"' % p not in text]
-    return env, ("why3 found no %s (scripts/setup.sh installs why3 cvc4 z3)" % " or ".join(missing)) if missing else ""
+    return env, ("why3 found no %s (scripts/setup.sh installs why3 cvc4 z3)" % " or ".join(missing)
+                 if missing else "")
 
 
 @dataclass
@@ -392,7 +394,8 @@ def analyse(config: Config, work: Path, extra: tuple[str, ...] = (), env: dict[s
             status = subprocess.run([*frontend(config, extra), "-print", "-ocode", str(printed)],
                                     stdout=out, stderr=subprocess.STDOUT, cwd=ROOT).returncode
         if status != 0 or not printed.exists():
-            return Run(config, [], time.monotonic() - start, log, f"frama-c -print exited with {status} (log: {out.name})")
+            return Run(config, [], time.monotonic() - start, log,
+                       f"frama-c -print exited with {status} (log: {out.name})")
     for unit in units:
         rows = prove_unit(config, unit, printed.read_text(), work, extra, env)
         if isinstance(rows, str):

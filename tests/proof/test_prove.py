@@ -93,18 +93,32 @@ def test_the_zephyr_flash_store_is_proved(frama_c, tmp_path):
 def test_wp_fails_on_a_check_that_lets_a_read_past_the_transitions(frama_c, tmp_path, monkeypatch):
     """WP proves check_indices' reads in bounds (docs/proof.md, "WP") from the test that each
     state's targets end within the header's transitions: without it, the read of a target is an
-    unproved property of check_indices, where the unchanged runtime has none."""
+    unproved property of check_indices, where the unchanged runtime has none. A lemma WP cannot
+    prove (true, so that it cannot prove anything else either: Fermat's for cubes) is an alarm,
+    though the report has no row for it."""
     runtime = tmp_path / "runtime_c"
     shutil.copytree(prove.RUNTIME, runtime)
     source = (runtime / "swarmvm.c").read_text()
     bound = " || defined > total_trans - succ) {"
-    assert source.count(bound) == 1
-    (runtime / "swarmvm.c").write_text(source.replace(bound, ") {"))
+    lemma = "/*@ lemma one_record_fits:"
+    assert source.count(bound) == 1 and source.count(lemma) == 1
+    hard = ("/*@ lemma no_cube_sum: \\forall integer a, b, c;\n"
+            "      0 < a && 0 < b && 0 < c ==> a * a * a + b * b * b != c * c * c; */\n")
+    (runtime / "swarmvm.c").write_text(source.replace(bound, ") {").replace(lemma, hard + lemma))
     monkeypatch.setattr(prove, "RUNTIME", runtime)
     run = prove.analyse(prove.BY_NAME["host"], tmp_path / "work")
     assert not run.error, run.error
     unproved = [a for a in run.alarms if a[2] == "check_indices"]
     assert any(a[3] == "mem_access" and "target" in a[5] for a in unproved), run.alarms
+    assert [a[5] for a in run.alarms if a[3] == "lemma"] == ["no_cube_sum"], run.alarms
+
+
+def test_a_run_without_the_provers_fails_saying_what_is_missing(tmp_path, monkeypatch, capsys):
+    """Fail closed: without Why3 (or with a Why3 that finds no CVC4 or Z3) nothing is proved."""
+    real = shutil.which
+    monkeypatch.setattr(prove.shutil, "which", lambda name: None if name == "why3" else real(name) or "/bin/true")
+    assert prove.main(["--config", CONFIG, "--work", str(tmp_path)]) == 2
+    assert "why3 not found (scripts/setup.sh installs why3 cvc4 z3)" in capsys.readouterr().err
 
 
 def row(function: str, kind: str, status: str, prop: str, line: str = "10") -> dict[str, str]:

@@ -90,7 +90,8 @@ def test_the_unit_reads_what_its_functions_name_and_nothing_else():
 
 def test_builds_that_differ_where_the_unit_does_not_read_share_its_key():
     key = unit_key(UNIT, "x86_16", PRINTED)
-    for old, new in (("uint8_t state[4]", "uint8_t state[32]"), ("static uint8_t unused[2]", "static uint8_t unused[9]"),
+    for old, new in (("uint8_t state[4]", "uint8_t state[32]"),
+                     ("static uint8_t unused[2]", "static uint8_t unused[9]"),
                      ("vm->state[0] = (uint8_t)1", "vm->state[0] = (uint8_t)2")):
         assert old in PRINTED
         assert unit_key(UNIT, "x86_16", PRINTED.replace(old, new)) == key, new

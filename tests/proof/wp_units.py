@@ -142,7 +142,8 @@ def unit_input(unit: Unit, printed: str) -> str:
     that differ only there share the unit's proof."""
     globals_ = split_globals(printed)
     wanted = set(unit.functions + unit.assigns_only)
-    chosen = {n for n, g in enumerate(globals_) if g.kind == "annotation" or (g.kind == "function" and g.names & wanted)}
+    chosen = {n for n, g in enumerate(globals_)
+              if g.kind == "annotation" or (g.kind == "function" and g.names & wanted)}
     while True:
         words = {w for n in chosen for w in _WORD.findall(globals_[n].text)}
         more = {n for n, g in enumerate(globals_) if n not in chosen and g.names & words}
